@@ -1,0 +1,54 @@
+// A* on the inflated voxel grid, 26-connected, bounded by a node budget, with line-of-sight
+// path shortening. Unknown space is free unless the options say otherwise.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "mmh/common/voxel_grid.hpp"
+
+namespace mmh {
+
+struct AStarOptions {
+  int64_t max_expansions = 200000;
+  bool unknown_is_free = true;
+  // Search only inside this world box (e.g. the altitude band of the geofence).
+  Eigen::Vector3d min_bound = Eigen::Vector3d::Constant(-1e9);
+  Eigen::Vector3d max_bound = Eigen::Vector3d::Constant(1e9);
+  // When the start lies in the inflated (but not occupied) zone, cells within this distance of it
+  // may be crossed so that the vehicle can leave the margin it is in.
+  double start_escape_radius_m = 0.0;
+};
+
+struct AStarResult {
+  enum class Status { kFound, kStartBlocked, kGoalBlocked, kOutOfWindow, kNoPath, kBudgetExceeded };
+  Status status = Status::kNoPath;
+  std::vector<Eigen::Vector3d> path;  // start, cell centres..., goal
+  int64_t expansions = 0;
+  bool ok() const { return status == Status::kFound; }
+};
+
+const char* toString(AStarResult::Status status);
+
+class GridAStar {
+ public:
+  AStarResult search(const VoxelGrid& grid, const Eigen::Vector3d& start,
+                     const Eigen::Vector3d& goal, const AStarOptions& options = {});
+
+ private:
+  // Per-cell search state, reused across searches (a generation stamp marks stale entries).
+  std::vector<float> g_cost_;
+  std::vector<int32_t> parent_;
+  std::vector<uint32_t> stamp_;
+  uint32_t generation_ = 0;
+};
+
+// Removes intermediate points while the straight segment between kept points stays free.
+std::vector<Eigen::Vector3d> shortenPath(const VoxelGrid& grid,
+                                         const std::vector<Eigen::Vector3d>& path);
+
+double pathLength(const std::vector<Eigen::Vector3d>& path);
+
+}  // namespace mmh

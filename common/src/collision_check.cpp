@@ -1,0 +1,41 @@
+#include "mmh/common/collision_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mmh {
+
+bool isPointBlocked(const VoxelGrid& grid, const Eigen::Vector3d& p, CollisionLayer layer) {
+  return layer == CollisionLayer::kInflated ? grid.isBlockedPoint(p) : grid.isOccupiedPoint(p);
+}
+
+bool isSegmentFree(const VoxelGrid& grid, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                   CollisionLayer layer) {
+  const double step = 0.25 * grid.resolution();
+  const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step)));
+  for (int i = 0; i <= n; ++i) {
+    if (isPointBlocked(grid, a + (b - a) * (static_cast<double>(i) / n), layer)) return false;
+  }
+  return true;
+}
+
+std::optional<double> firstCollisionTime(const VoxelGrid& grid, const Trajectory& traj, double t0,
+                                         double t1, CollisionLayer layer) {
+  if (traj.empty()) return std::nullopt;
+  t0 = std::max(0.0, t0);
+  t1 = std::min(traj.duration(), t1);
+  if (t1 < t0) return std::nullopt;
+  const double step_m = 0.25 * grid.resolution();
+  // Time step from the speed bound of the whole trajectory (exact maximum), so that no two
+  // samples are further apart than step_m.
+  const double vmax = std::max(1e-3, traj.maxSpeed());
+  const double dt = std::max(1e-4, step_m / vmax);
+  for (double t = t0;; t += dt) {
+    const double tc = std::min(t, t1);
+    if (isPointBlocked(grid, traj.position(tc), layer)) return tc;
+    if (tc >= t1) break;
+  }
+  return std::nullopt;
+}
+
+}  // namespace mmh

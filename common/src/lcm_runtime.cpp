@@ -1,0 +1,186 @@
+#include "mmh/common/lcm_runtime.hpp"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+
+namespace mmh {
+namespace {
+
+std::atomic<bool> g_stop{false};
+
+void onSignal(int) {
+  g_stop.store(true);
+}
+
+std::string hostName() {
+  char buf[256] = {0};
+  if (gethostname(buf, sizeof(buf) - 1) != 0) return "unknown";
+  return buf;
+}
+
+}  // namespace
+
+int64_t wallTimeUs() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+void installStopHandlers() {
+  struct sigaction sa {};
+  sa.sa_handler = onSignal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+bool stopRequested() {
+  return g_stop.load();
+}
+
+std::unique_ptr<lcm::LCM> openLcm(const std::string& url) {
+  std::string effective = url;
+  if (effective.empty()) {
+    const char* env = std::getenv("LCM_DEFAULT_URL");
+    effective = env ? env : "";
+  }
+  auto lcm = std::make_unique<lcm::LCM>(effective);
+  const std::string shown =
+      effective.empty() ? "udpm://239.255.76.67:7667?ttl=0 (default)" : effective;
+  // LCM 1.3.1: without a multicast route good() is false; a failed self-test leaves good() true
+  // but getFileno() -1. Both mean the node would be deaf.
+  if (!lcm->good() || lcm->getFileno() < 0) {
+    throw LcmError(
+        "LCM is not usable with URL " + shown +
+        ". For udpm:// this usually means there is no multicast route: on a single machine run\n"
+        "  sudo ip route add 224.0.0.0/4 dev lo\n"
+        "(or on the network interface that joins your machines, see README 'Several machines'),"
+        " or pick another URL with --lcm-url / LCM_DEFAULT_URL.");
+  }
+  return lcm;
+}
+
+ServiceContext::ServiceContext(lcm::LCM& lcm, std::string service, std::string prefix)
+    : lcm_(lcm),
+      service_(std::move(service)),
+      prefix_(std::move(prefix)),
+      host_(hostName()),
+      started_wall_us_(wallTimeUs()) {}
+
+ServiceContext::~ServiceContext() {
+  for (lcm::Subscription* s : lcm_subscriptions_) lcm_.unsubscribe(s);
+}
+
+int64_t ServiceContext::counter(const std::string& name) const {
+  auto it = counters_.find(name);
+  return it == counters_.end() ? 0 : it->second;
+}
+
+void ServiceContext::reject(const std::string& counter, const std::string& reason) {
+  ++counters_[counter];
+  ++msgs_rejected_;
+  LogLimiter& limiter = limiters_[counter];
+  if (limiter.shouldLog()) {
+    logWarn(service_ + ": " + reason + " [" + counter + " = " + std::to_string(counters_[counter]) +
+            "]");
+  }
+}
+
+bool ServiceContext::admit(const std::string& channel, const std::string& source, int64_t utime,
+                           int64_t seq) {
+  auto& last = last_in_[channel + "|" + source];
+  if (last.first > 0 && utime < last.first) {
+    if (seq <= 1) {
+      // The publisher restarted (its sequence starts again): accept its new clock.
+      logInfo(service_ + ": " + channel + " from " + source + " restarted its clock");
+    } else {
+      reject("rejected_time_backwards", channel + " from " + source + ": utime went back by " +
+                                            std::to_string(last.first - utime) + " us");
+      return false;
+    }
+  }
+  last = {utime, seq};
+  return true;
+}
+
+void ServiceContext::setIncomingLoss(const std::string& base_channel, double fraction,
+                                     uint64_t seed) {
+  loss_[channel(base_channel)] = fraction;
+  loss_rng_.seed(seed);
+}
+
+bool ServiceContext::dropForLoss(const std::string& channel) {
+  auto it = loss_.find(channel);
+  if (it == loss_.end() || it->second <= 0.0) return false;
+  if (std::uniform_real_distribution<double>(0.0, 1.0)(loss_rng_) >= it->second) return false;
+  ++counters_["test_dropped"];
+  return true;
+}
+
+void ServiceContext::setState(int8_t state, const std::string& detail) {
+  if (state != state_ || detail != state_detail_) {
+    if (state == heartbeat_t::STATE_DEGRADED)
+      logWarn(service_ + ": degraded: " + detail);
+    else if (state_ == heartbeat_t::STATE_DEGRADED)
+      logInfo(service_ + ": recovered");
+  }
+  state_ = state;
+  state_detail_ = detail;
+}
+
+void ServiceContext::maybePublishHeartbeat(int64_t now_us) {
+  if (last_heartbeat_us_ >= 0 && now_us - last_heartbeat_us_ < 1'000'000) return;
+  last_heartbeat_us_ = now_us;
+  publishHeartbeat();
+}
+
+void ServiceContext::publishHeartbeat() {
+  heartbeat_t hb{};
+  hb.header.utime = clock_.now();
+  hb.service = service_;
+  hb.host = host_;
+  hb.pid = static_cast<int32_t>(getpid());
+  hb.state = state_;
+  hb.state_detail = state_detail_;
+  hb.uptime_s = (wallTimeUs() - started_wall_us_) / 1'000'000;
+  hb.msgs_in = msgs_in_;
+  hb.msgs_out = msgs_out_;
+  hb.msgs_rejected = msgs_rejected_;
+  for (const auto& [name, value] : counters_) {
+    hb.counter_names.push_back(name);
+    hb.counter_values.push_back(value);
+  }
+  hb.num_counters = static_cast<int32_t>(hb.counter_names.size());
+  publish(channels::kHeartbeat, hb);
+}
+
+int runNode(lcm::LCM& lcm, const std::vector<ServiceContext*>& contexts,
+            const std::function<void()>& periodic, int poll_ms) {
+  installStopHandlers();
+  for (ServiceContext* c : contexts) {
+    if (c->state() == heartbeat_t::STATE_STARTING) c->setState(heartbeat_t::STATE_OK, "");
+    c->maybePublishHeartbeat(wallTimeUs());
+  }
+  while (!stopRequested()) {
+    const int status = lcm.handleTimeout(poll_ms);
+    if (status < 0) {
+      logError("LCM handle failed; stopping");
+      return 1;
+    }
+    if (periodic) periodic();
+    const int64_t now = wallTimeUs();
+    for (ServiceContext* c : contexts) c->maybePublishHeartbeat(now);
+  }
+  for (ServiceContext* c : contexts) {
+    c->setState(heartbeat_t::STATE_STOPPING, "signal received");
+    c->publishHeartbeat();
+  }
+  logInfo("stopped cleanly");
+  return 0;
+}
+
+}  // namespace mmh

@@ -1,0 +1,155 @@
+#include "mmh/common/message_validation.hpp"
+
+#include <cmath>
+
+#include "mmh/common/local_map_codec.hpp"
+
+namespace mmh {
+namespace {
+
+bool fail(std::string* why, const std::string& text) {
+  if (why) *why = text;
+  return false;
+}
+
+bool finiteVec(const double* v, int n, double bound = kMaxAbsCoordinate_m) {
+  for (int i = 0; i < n; ++i) {
+    if (!std::isfinite(v[i]) || std::abs(v[i]) > bound) return false;
+  }
+  return true;
+}
+
+bool validQuaternion(const double* q) {
+  if (!finiteVec(q, 4, 2.0)) return false;
+  const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  return std::abs(n - 1.0) < 1e-2;
+}
+
+}  // namespace
+
+bool validate(const header_t& msg, std::string* why) {
+  if (msg.utime < 0) return fail(why, "header.utime is negative");
+  if (msg.seq < 0) return fail(why, "header.seq is negative");
+  if (msg.source.size() > 256) return fail(why, "header.source is too long");
+  return true;
+}
+
+bool validate(const odometry_t& msg, std::string* why) {
+  if (!validate(msg.header, why)) return false;
+  if (!finiteVec(msg.position, 3)) return fail(why, "position is not finite");
+  if (!finiteVec(msg.velocity, 3, 1e3)) return fail(why, "velocity is not finite or absurd");
+  if (!finiteVec(msg.acceleration, 3, 1e4))
+    return fail(why, "acceleration is not finite or absurd");
+  if (!validQuaternion(msg.orientation)) return fail(why, "orientation is not a unit quaternion");
+  return true;
+}
+
+bool validate(const pointcloud_t& msg, std::string* why) {
+  if (!validate(msg.header, why)) return false;
+  if (msg.sensor_kind != pointcloud_t::SENSOR_DEPTH &&
+      msg.sensor_kind != pointcloud_t::SENSOR_LIDAR)
+    return fail(why, "unknown sensor_kind " + std::to_string(msg.sensor_kind));
+  if (!finiteVec(msg.sensor_position, 3)) return fail(why, "sensor_position is not finite");
+  if (!validQuaternion(msg.sensor_orientation))
+    return fail(why, "sensor_orientation is not a unit quaternion");
+  if (!std::isfinite(msg.max_range_m) || msg.max_range_m <= 0.f || msg.max_range_m > 1000.f)
+    return fail(why, "max_range_m outside (0, 1000]");
+  if (msg.num_coords < 0 || static_cast<size_t>(msg.num_coords) != msg.xyz.size())
+    return fail(why, "num_coords disagrees with the data");
+  if (msg.num_coords % 3 != 0) return fail(why, "num_coords is not a multiple of 3");
+  if (msg.num_coords > kMaxPointcloudCoords) return fail(why, "scan has too many points");
+  return true;
+}
+
+bool validate(const goal_t& msg, std::string* why) {
+  if (!validate(msg.header, why)) return false;
+  if (!finiteVec(msg.position, 3)) return fail(why, "goal position is not finite");
+  return true;
+}
+
+bool validate(const local_map_t& msg, std::string* why) {
+  if (!validate(msg.header, why)) return false;
+  return validateLocalMap(msg, why);
+}
+
+bool validate(const awareness_t& msg, std::string* why) {
+  if (!validate(msg.header, why)) return false;
+  if (msg.reason < awareness_t::REASON_CLEAR || msg.reason > awareness_t::REASON_NARROW)
+    return fail(why, "unknown awareness reason");
+  if (!finiteVec(msg.position, 3) || !finiteVec(msg.goal, 3) || !finiteVec(msg.ray_end, 3) ||
+      !finiteVec(msg.first_blocked, 3))
+    return fail(why, "awareness has non-finite coordinates");
+  return true;
+}
+
+bool validate(const trajectory_t& msg, std::string* why) {
+  if (!validate(msg.header, why)) return false;
+  if (msg.num_pieces < 0 || static_cast<size_t>(msg.num_pieces) != msg.pieces.size())
+    return fail(why, "num_pieces disagrees with the data");
+  if (msg.num_pieces > kMaxTrajectoryPieces) return fail(why, "trajectory has too many pieces");
+  if (msg.start_utime < 0) return fail(why, "start_utime is negative");
+  for (const traj_piece_t& p : msg.pieces) {
+    if (!std::isfinite(p.duration_s) || p.duration_s <= 0.0 || p.duration_s > 1e4)
+      return fail(why, "piece duration outside (0, 1e4] s");
+    for (int a = 0; a < 3; ++a) {
+      if (!finiteVec(p.coeffs[a], 8, 1e12)) return fail(why, "piece coefficient not finite");
+    }
+  }
+  return true;
+}
+
+bool validate(const plan_request_t& msg, std::string* why) {
+  if (!validate(msg.header, why)) return false;
+  if (msg.mode < plan_request_t::MODE_FPM || msg.mode > plan_request_t::MODE_STOP)
+    return fail(why, "unknown mode " + std::to_string(msg.mode));
+  if (!finiteVec(msg.start_position, 3) || !finiteVec(msg.start_velocity, 3, 1e3) ||
+      !finiteVec(msg.start_acceleration, 3, 1e4))
+    return fail(why, "start state is not finite or absurd");
+  if (!finiteVec(msg.target, 3) || !finiteVec(msg.goal, 3))
+    return fail(why, "target or goal is not finite");
+  if (msg.num_waypoints < 0 || msg.num_waypoints > kMaxWaypoints ||
+      static_cast<size_t>(msg.num_waypoints) != msg.waypoints.size())
+    return fail(why, "num_waypoints disagrees with the data");
+  for (const auto& w : msg.waypoints) {
+    if (w.size() != 3 || !finiteVec(w.data(), 3)) return fail(why, "bad waypoint");
+  }
+  if (msg.start_utime < 0 || msg.deadline_utime < 0) return fail(why, "negative time");
+  return validate(msg.reference, why);
+}
+
+bool validate(const plan_result_t& msg, std::string* why) {
+  if (!validate(msg.header, why)) return false;
+  if (msg.status != plan_result_t::STATUS_OK && msg.status != plan_result_t::STATUS_FAILED)
+    return fail(why, "unknown status");
+  if (msg.compute_us < 0) return fail(why, "negative compute time");
+  if (msg.status == plan_result_t::STATUS_OK && msg.trajectory.num_pieces == 0)
+    return fail(why, "successful result without a trajectory");
+  const double costs[4] = {msg.cost_total, msg.cost_control, msg.cost_time, msg.cost_penalty};
+  if (!finiteVec(costs, 4, 1e300)) return fail(why, "cost is not finite");
+  return validate(msg.trajectory, why);
+}
+
+bool validate(const arbiter_status_t& msg, std::string* why) {
+  if (!validate(msg.header, why)) return false;
+  if (!finiteVec(msg.position, 3) || !finiteVec(msg.local_target, 3))
+    return fail(why, "non-finite coordinates");
+  return true;
+}
+
+bool validate(const heartbeat_t& msg, std::string* why) {
+  if (!validate(msg.header, why)) return false;
+  if (msg.num_counters < 0 || msg.num_counters > kMaxHeartbeatCounters ||
+      static_cast<size_t>(msg.num_counters) != msg.counter_names.size() ||
+      msg.counter_names.size() != msg.counter_values.size())
+    return fail(why, "num_counters disagrees with the data");
+  return true;
+}
+
+bool validate(const mission_status_t& msg, std::string* why) {
+  if (!validate(msg.header, why)) return false;
+  const double v[3] = {msg.flight_time_s, msg.distance_m, msg.energy};
+  if (!finiteVec(v, 3, 1e12)) return fail(why, "non-finite metrics");
+  return true;
+}
+
+}  // namespace mmh

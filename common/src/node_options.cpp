@@ -1,0 +1,40 @@
+#include "mmh/common/node_options.hpp"
+
+#include <cstdlib>
+
+#include "mmh/common/log.hpp"
+
+#ifndef MMH_DEFAULT_CONFIG
+#define MMH_DEFAULT_CONFIG "deploy/config/default.yaml"
+#endif
+
+namespace mmh {
+
+std::string defaultConfigPath() {
+  const char* env = std::getenv("MMH_CONFIG");
+  return env && *env ? env : MMH_DEFAULT_CONFIG;
+}
+
+void addNodeOptions(ArgParser& parser, NodeOptions* options) {
+  parser.addString("--lcm-url", &options->lcm_url,
+                   "LCM URL (default: $LCM_DEFAULT_URL, else udpm://239.255.76.67:7667?ttl=0)");
+  parser.addString("--prefix", &options->prefix, "channel prefix, e.g. UAV1_");
+  parser.addString(
+      "--config", &options->config_path,
+      "configuration file (default: $MMH_CONFIG or " + std::string(MMH_DEFAULT_CONFIG) + ")");
+  parser.addString("--log-level", &options->log_level, "debug, info, warn or error");
+}
+
+Config loadNodeConfig(const NodeOptions& options) {
+  if (options.log_level == "debug")
+    setLogLevel(LogLevel::kDebug);
+  else if (options.log_level == "warn")
+    setLogLevel(LogLevel::kWarn);
+  else if (options.log_level == "error")
+    setLogLevel(LogLevel::kError);
+  else
+    setLogLevel(LogLevel::kInfo);
+  return Config::loadFile(options.config_path.empty() ? defaultConfigPath() : options.config_path);
+}
+
+}  // namespace mmh

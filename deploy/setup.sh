@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Installs (only when missing) every Debian 12 package MMH-Planner needs, then configures and
+# builds the project with CMake (Release) into build/ (executables in build/bin/).
+# Idempotent and quiet when everything is already there.
+#
+#   deploy/setup.sh              install what is missing, configure, build
+#   deploy/setup.sh --no-build   install only
+#   BUILD_DIR=build-asan CMAKE_ARGS="-DMMH_SANITIZE=ON" deploy/setup.sh   another build tree
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build_dir=${BUILD_DIR:-$root/build}
+case "$build_dir" in /*) ;; *) build_dir=$root/$build_dir ;; esac
+
+packages=(
+  build-essential cmake pkg-config git
+  liblcm-dev liblcm-bin liblcm-java libjchart2d-java libglib2.0-dev
+  libeigen3-dev liboctomap-dev libpcl-dev libnlopt-cxx-dev libyaml-cpp-dev
+  libgtest-dev libbenchmark-dev default-jdk-headless
+  iproute2 util-linux procps python3 python3-matplotlib python3-numpy
+  xvfb xauth x11-utils imagemagick clang libclang-rt-14-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${#missing[@]} missing Debian packages: ${missing[*]}"
+  sudo_cmd=()
+  if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -qq
+  "${sudo_cmd[@]}" apt-get install -y -qq "${missing[@]}" >/tmp/mmh-setup-apt.log 2>&1 || {
+    tail -30 /tmp/mmh-setup-apt.log; echo "setup: apt-get install failed (log: /tmp/mmh-setup-apt.log)"; exit 1; }
+fi
+
+[ "${1:-}" = "--no-build" ] && exit 0
+
+jobs=$(nproc 2>/dev/null || echo 2)
+if [ ! -f "$build_dir/CMakeCache.txt" ]; then
+  cmake -S "$root" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release ${CMAKE_ARGS:-} >"$build_dir.cmake.log" 2>&1 || {
+    cat "$build_dir.cmake.log"; echo "setup: CMake configuration failed"; exit 1; }
+fi
+cmake --build "$build_dir" -j "$jobs" -- --no-print-directory >"$build_dir.build.log" 2>&1 || {
+  grep -E "error|Error" -A3 "$build_dir.build.log" | head -60; echo "setup: build failed (log: $build_dir.build.log)"; exit 1; }

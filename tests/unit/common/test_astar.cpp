@@ -1,0 +1,117 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "mmh/common/collision_check.hpp"
+#include "mmh/common/grid_astar.hpp"
+
+using Eigen::Vector3d;
+using Eigen::Vector3i;
+using mmh::AStarResult;
+using mmh::Occupancy;
+using mmh::VoxelGrid;
+
+namespace {
+
+// Grid of 1 m cells so that path lengths are easy to count.
+VoxelGrid unitGrid(int nx, int ny, int nz) {
+  return VoxelGrid(1.0, Vector3i(0, 0, 0), Vector3i(nx, ny, nz));
+}
+Vector3d cell(int x, int y, int z) {
+  return Vector3d(x + 0.5, y + 0.5, z + 0.5);
+}
+
+}  // namespace
+
+TEST(GridAStar, StraightAndDiagonalCostsAreOptimal) {
+  VoxelGrid g = unitGrid(20, 20, 5);
+  mmh::GridAStar astar;
+  auto r = astar.search(g, cell(1, 1, 1), cell(11, 1, 1));
+  ASSERT_TRUE(r.ok());
+  EXPECT_NEAR(mmh::pathLength(r.path), 10.0, 1e-9);
+  r = astar.search(g, cell(1, 1, 1), cell(8, 5, 3));  // octile: 7 + (sqrt2-1)*4 + (sqrt3-sqrt2)*2
+  ASSERT_TRUE(r.ok());
+  EXPECT_NEAR(mmh::pathLength(r.path), 3 + 2 * std::sqrt(2.0) + 2 * std::sqrt(3.0), 1e-9);
+}
+
+TEST(GridAStar, GoesAroundAWallOnTheShortestGridPath) {
+  // Wall at x = 5 from y = 0 to y = 7 (full height): the way round is through y = 8.
+  VoxelGrid g = unitGrid(11, 12, 1);
+  for (int y = 0; y <= 7; ++y) g.set(Vector3i(5, y, 0), Occupancy::kOccupied);
+  mmh::GridAStar astar;
+  auto r = astar.search(g, cell(2, 2, 0), cell(8, 2, 0));
+  ASSERT_TRUE(r.ok());
+  // Best 8-connected path: (2,2) -> (5,8) needs 6 up with 3 diagonal: 3 sqrt2 + 3, and back down
+  // the same: total 6 sqrt2 + 6.
+  EXPECT_NEAR(mmh::pathLength(r.path), 6 * std::sqrt(2.0) + 6, 1e-9);
+  for (const auto& p : r.path) EXPECT_FALSE(g.isOccupiedPoint(p));
+  for (size_t i = 1; i < r.path.size(); ++i)
+    EXPECT_TRUE(mmh::isSegmentFree(g, r.path[i - 1], r.path[i], mmh::CollisionLayer::kOccupied));
+}
+
+TEST(GridAStar, FailsClearlyWhenEnclosedOrBlocked) {
+  VoxelGrid g = unitGrid(10, 10, 10);
+  const Vector3i goal(5, 5, 5);
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx)
+        if (dx || dy || dz) g.set(goal + Vector3i(dx, dy, dz), Occupancy::kOccupied);
+  mmh::GridAStar astar;
+  auto r = astar.search(g, cell(1, 1, 1), cell(5, 5, 5));
+  EXPECT_EQ(r.status, AStarResult::Status::kNoPath);
+  EXPECT_TRUE(r.path.empty());
+  r = astar.search(g, cell(4, 4, 4), cell(1, 1, 1));
+  EXPECT_EQ(r.status, AStarResult::Status::kStartBlocked);
+  r = astar.search(g, cell(1, 1, 1), cell(4, 5, 5));
+  EXPECT_EQ(r.status, AStarResult::Status::kGoalBlocked);
+  r = astar.search(g, cell(1, 1, 1), Vector3d(50, 1, 1));
+  EXPECT_EQ(r.status, AStarResult::Status::kOutOfWindow);
+  mmh::AStarOptions tight;
+  tight.max_expansions = 5;
+  r = astar.search(g, cell(0, 0, 0), cell(9, 9, 0), tight);
+  EXPECT_EQ(r.status, AStarResult::Status::kBudgetExceeded);
+}
+
+TEST(GridAStar, RespectsInflationBoundsAndEscape) {
+  VoxelGrid g(0.1, Vector3i(0, 0, 0), Vector3i(60, 40, 20));
+  g.setInflationRadius(0.3);
+  for (int z = 0; z < 20; ++z)
+    for (int y = 0; y < 30; ++y) g.set(Vector3i(30, y, z), Occupancy::kOccupied);
+  mmh::GridAStar astar;
+  auto r = astar.search(g, Vector3d(1.0, 1.0, 1.0), Vector3d(5.0, 1.0, 1.0));
+  ASSERT_TRUE(r.ok());
+  for (const auto& p : r.path) EXPECT_FALSE(g.isBlockedPoint(p));
+  // Restricting z to a band excludes cells outside it.
+  mmh::AStarOptions band;
+  band.min_bound = Vector3d(-1e9, -1e9, 0.8);
+  band.max_bound = Vector3d(1e9, 1e9, 1.2);
+  r = astar.search(g, Vector3d(1.0, 1.0, 1.0), Vector3d(5.0, 1.0, 1.0), band);
+  ASSERT_TRUE(r.ok());
+  for (const auto& p : r.path) {
+    EXPECT_GE(p.z(), 0.8 - 1e-9);
+    EXPECT_LE(p.z(), 1.2 + 1e-9);
+  }
+  // A start inside the margin (0.2 m from the wall) is refused unless escape is allowed.
+  const Vector3d near_wall(2.85, 1.0, 1.0);
+  EXPECT_EQ(astar.search(g, near_wall, Vector3d(1.0, 1.0, 1.0)).status,
+            AStarResult::Status::kStartBlocked);
+  mmh::AStarOptions escape;
+  escape.start_escape_radius_m = 0.5;
+  EXPECT_TRUE(astar.search(g, near_wall, Vector3d(1.0, 1.0, 1.0), escape).ok());
+}
+
+TEST(ShortenPath, KeepsOnlyTurnPointsAndStaysFree) {
+  VoxelGrid g(0.1, Vector3i(0, 0, 0), Vector3i(80, 80, 10));
+  g.setInflationRadius(0.2);
+  for (int z = 0; z < 10; ++z)
+    for (int y = 0; y < 50; ++y) g.set(Vector3i(40, y, z), Occupancy::kOccupied);
+  mmh::GridAStar astar;
+  auto r = astar.search(g, Vector3d(1.0, 1.0, 0.5), Vector3d(7.0, 1.0, 0.5));
+  ASSERT_TRUE(r.ok());
+  auto short_path = mmh::shortenPath(g, r.path);
+  EXPECT_LT(short_path.size(), 6u);
+  EXPECT_GE(short_path.size(), 3u);
+  EXPECT_LE(mmh::pathLength(short_path), mmh::pathLength(r.path) + 1e-9);
+  for (size_t i = 1; i < short_path.size(); ++i)
+    EXPECT_TRUE(mmh::isSegmentFree(g, short_path[i - 1], short_path[i]));
+}

@@ -1,0 +1,120 @@
+// The LCM runtime over memq:// (in-process): decoding, validation, counters, prefixes, clock.
+#include <gtest/gtest.h>
+
+#include "mmh/common/lcm_runtime.hpp"
+#include "mmh/goal_t.hpp"
+#include "mmh/odometry_t.hpp"
+
+namespace {
+
+struct Sink {
+  void onGoal(const mmh::goal_t& m) { goals.push_back(m); }
+  void onOdom(const mmh::odometry_t& m) { odoms.push_back(m); }
+  std::vector<mmh::goal_t> goals;
+  std::vector<mmh::odometry_t> odoms;
+};
+
+void drain(lcm::LCM& lcm) {
+  while (lcm.handleTimeout(0) > 0) {
+  }
+}
+
+mmh::odometry_t odom(int64_t utime) {
+  mmh::odometry_t m{};
+  m.header.utime = utime;
+  m.orientation[0] = 1.0;
+  return m;
+}
+
+}  // namespace
+
+TEST(Runtime, OpenLcmMemq) {
+  auto lcm = mmh::openLcm("memq://");
+  EXPECT_TRUE(lcm->good());
+}
+
+TEST(Runtime, PublishSubscribeWithPrefixSeqAndClock) {
+  auto lcm = mmh::openLcm("memq://");
+  mmh::ServiceContext pub(*lcm, "pub", "UAV1_");
+  mmh::ServiceContext sub(*lcm, "sub", "UAV1_");
+  mmh::ServiceContext other(*lcm, "other", "UAV2_");
+  Sink sink, other_sink;
+  sub.subscribe(mmh::channels::kOdometry, &Sink::onOdom, &sink);
+  other.subscribe(mmh::channels::kOdometry, &Sink::onOdom, &other_sink);
+  for (int i = 1; i <= 3; ++i) {
+    auto m = odom(1000 * i);
+    pub.publish(mmh::channels::kOdometry, m);
+  }
+  drain(*lcm);
+  ASSERT_EQ(sink.odoms.size(), 3u);
+  EXPECT_EQ(sink.odoms[2].header.seq, 3);
+  EXPECT_EQ(sink.odoms[2].header.source, "pub");
+  EXPECT_TRUE(other_sink.odoms.empty());  // prefixes isolate vehicles
+  EXPECT_EQ(sub.clock().now(), 3000);
+  EXPECT_EQ(sub.messagesIn(), 3);
+  EXPECT_EQ(pub.messagesOut(), 3);
+}
+
+TEST(Runtime, RejectsInvalidWrongTypeAndBackwardsTime) {
+  auto lcm = mmh::openLcm("memq://");
+  mmh::ServiceContext pub(*lcm, "pub", "");
+  mmh::ServiceContext sub(*lcm, "sub", "");
+  Sink sink;
+  sub.subscribe(mmh::channels::kOdometry, &Sink::onOdom, &sink);
+  auto bad = odom(10);
+  bad.position[0] = NAN;
+  pub.publish(mmh::channels::kOdometry, bad);
+  mmh::goal_t wrong{};  // a goal on the odometry channel
+  pub.publish(mmh::channels::kOdometry, wrong);
+  auto a = odom(5000), b = odom(4000);
+  pub.publish(mmh::channels::kOdometry, a);
+  pub.publish(mmh::channels::kOdometry, b);
+  drain(*lcm);
+  ASSERT_EQ(sink.odoms.size(), 1u);
+  EXPECT_EQ(sink.odoms[0].header.utime, 5000);
+  EXPECT_EQ(sub.counter("rejected_invalid"), 1);
+  EXPECT_EQ(sub.counter("rejected_decode"), 1);
+  EXPECT_EQ(sub.counter("rejected_time_backwards"), 1);
+  EXPECT_EQ(sub.messagesRejected(), 3);
+}
+
+TEST(Runtime, HeartbeatCarriesCounters) {
+  auto lcm = mmh::openLcm("memq://");
+  mmh::ServiceContext svc(*lcm, "mmh-test", "");
+  mmh::ServiceContext mon(*lcm, "monitor", "");
+  struct HbSink {
+    void on(const mmh::heartbeat_t& h) { beats.push_back(h); }
+    std::vector<mmh::heartbeat_t> beats;
+  } hb;
+  mon.subscribe(mmh::channels::kHeartbeat, &HbSink::on, &hb);
+  svc.increment("rejected_nan", 2);
+  svc.setState(mmh::heartbeat_t::STATE_DEGRADED, "no map");
+  svc.maybePublishHeartbeat(1'000'000);
+  svc.maybePublishHeartbeat(1'500'000);  // too soon
+  svc.maybePublishHeartbeat(2'000'000);
+  drain(*lcm);
+  ASSERT_EQ(hb.beats.size(), 2u);
+  EXPECT_EQ(hb.beats[0].service, "mmh-test");
+  EXPECT_EQ(hb.beats[0].state, mmh::heartbeat_t::STATE_DEGRADED);
+  ASSERT_EQ(hb.beats[0].num_counters, 1);
+  EXPECT_EQ(hb.beats[0].counter_names[0], "rejected_nan");
+  EXPECT_EQ(hb.beats[0].counter_values[0], 2);
+}
+
+TEST(Runtime, LossSwitchDropsAShare) {
+  auto lcm = mmh::openLcm("memq://");
+  mmh::ServiceContext pub(*lcm, "pub", "");
+  mmh::ServiceContext sub(*lcm, "sub", "");
+  Sink sink;
+  sub.subscribe(mmh::channels::kGoal, &Sink::onGoal, &sink);
+  sub.setIncomingLoss(mmh::channels::kGoal, 0.3, 42);
+  for (int i = 1; i <= 1000; ++i) {
+    mmh::goal_t g{};
+    g.header.utime = i;
+    pub.publish(mmh::channels::kGoal, g);
+    drain(*lcm);
+  }
+  EXPECT_GT(sink.goals.size(), 600u);
+  EXPECT_LT(sink.goals.size(), 800u);
+  EXPECT_EQ(sub.counter("test_dropped") + static_cast<int64_t>(sink.goals.size()), 1000);
+}

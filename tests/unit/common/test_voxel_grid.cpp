@@ -1,0 +1,104 @@
+#include <gtest/gtest.h>
+
+#include "mmh/common/collision_check.hpp"
+#include "mmh/common/voxel_grid.hpp"
+
+using Eigen::Vector3d;
+using Eigen::Vector3i;
+using mmh::Occupancy;
+using mmh::VoxelGrid;
+
+TEST(VoxelGrid, WorldIndexConversions) {
+  VoxelGrid g(0.1, Vector3i(-50, -50, 0), Vector3i(100, 100, 30));
+  EXPECT_EQ(g.globalIndexOf(Vector3d(0.05, -0.05, 1.23)), Vector3i(0, -1, 12));
+  EXPECT_EQ(g.localIndexOf(Vector3d(0.05, -0.05, 1.23)), Vector3i(50, 49, 12));
+  EXPECT_TRUE(g.centerOfLocal(Vector3i(50, 49, 12)).isApprox(Vector3d(0.05, -0.05, 1.25)));
+  EXPECT_TRUE(g.containsPoint(Vector3d(-4.99, 4.99, 0.01)));
+  EXPECT_FALSE(g.containsPoint(Vector3d(5.01, 0, 1)));
+  EXPECT_FALSE(g.containsPoint(Vector3d(0, 0, -0.01)));
+  for (int64_t i : {int64_t{0}, int64_t{12345}, g.numCells() - 1}) {
+    EXPECT_EQ(g.linearIndex(g.localFromLinear(i)), i);
+  }
+  EXPECT_TRUE(g.minCorner().isApprox(Vector3d(-5, -5, 0)));
+  EXPECT_TRUE(g.maxCorner().isApprox(Vector3d(5, 5, 3)));
+}
+
+TEST(VoxelGrid, StatesAndOutsideIsUnknown) {
+  VoxelGrid g(0.2, Vector3i(0, 0, 0), Vector3i(10, 10, 10));
+  EXPECT_EQ(g.at(Vector3i(1, 2, 3)), Occupancy::kUnknown);
+  g.set(Vector3i(1, 2, 3), Occupancy::kOccupied);
+  g.set(Vector3i(1, 2, 4), Occupancy::kFree);
+  EXPECT_EQ(g.at(Vector3i(1, 2, 3)), Occupancy::kOccupied);
+  EXPECT_EQ(g.atPoint(Vector3d(0.3, 0.5, 0.9)), Occupancy::kFree);
+  EXPECT_EQ(g.at(Vector3i(-1, 0, 0)), Occupancy::kUnknown);
+  EXPECT_EQ(g.numOccupied(), 1);
+}
+
+TEST(VoxelGrid, InflationCoversTheRadiusOnlyAndIsIncremental) {
+  VoxelGrid g(0.1, Vector3i(0, 0, 0), Vector3i(40, 40, 40));
+  g.setInflationRadius(0.3);
+  const Vector3i c(20, 20, 20);
+  g.set(c, Occupancy::kOccupied);
+  EXPECT_TRUE(g.isBlocked(c));
+  EXPECT_TRUE(g.isBlocked(c + Vector3i(3, 0, 0)));   // 0.3 m away
+  EXPECT_FALSE(g.isBlocked(c + Vector3i(4, 0, 0)));  // 0.4 m away
+  EXPECT_TRUE(g.isBlocked(c + Vector3i(2, 2, 0)));   // 0.283 m
+  EXPECT_FALSE(g.isBlocked(c + Vector3i(3, 3, 0)));  // 0.424 m
+  // Two obstacles overlap; removing one keeps the other's zone.
+  g.set(c + Vector3i(2, 0, 0), Occupancy::kOccupied);
+  g.set(c, Occupancy::kFree);
+  EXPECT_TRUE(g.isBlocked(c + Vector3i(5, 0, 0)));
+  EXPECT_TRUE(g.isBlocked(c));
+  EXPECT_FALSE(g.isBlocked(c + Vector3i(-2, 0, 0)));
+  g.set(c + Vector3i(2, 0, 0), Occupancy::kFree);
+  EXPECT_FALSE(g.isBlocked(c + Vector3i(2, 0, 0)));
+  // Changing the radius rebuilds.
+  g.set(c, Occupancy::kOccupied);
+  g.setInflationRadius(0.5);
+  EXPECT_TRUE(g.isBlocked(c + Vector3i(5, 0, 0)));
+}
+
+TEST(VoxelGrid, ShiftKeepsOverlapAndInflation) {
+  VoxelGrid g(0.1, Vector3i(0, 0, 0), Vector3i(20, 20, 10));
+  g.setInflationRadius(0.2);
+  g.set(Vector3i(15, 15, 5), Occupancy::kOccupied);  // global (15, 15, 5)
+  g.set(Vector3i(1, 1, 5), Occupancy::kOccupied);    // leaves the window after the shift
+  g.set(Vector3i(12, 12, 5), Occupancy::kFree);
+  g.shiftTo(Vector3i(5, 5, 0));
+  EXPECT_EQ(g.at(Vector3i(10, 10, 5)), Occupancy::kOccupied);
+  EXPECT_EQ(g.at(Vector3i(7, 7, 5)), Occupancy::kFree);
+  EXPECT_EQ(g.at(Vector3i(17, 17, 5)), Occupancy::kUnknown);  // entered
+  EXPECT_EQ(g.numOccupied(), 1);
+  EXPECT_TRUE(g.isBlocked(Vector3i(12, 10, 5)));
+  EXPECT_FALSE(g.isBlocked(Vector3i(0, 0, 5)));  // the obstacle that left took its zone along
+  // Same as a grid built directly at the new origin.
+  VoxelGrid h(0.1, Vector3i(5, 5, 0), Vector3i(20, 20, 10));
+  h.setInflationRadius(0.2);
+  h.set(Vector3i(10, 10, 5), Occupancy::kOccupied);
+  for (int64_t i = 0; i < g.numCells(); ++i) {
+    ASSERT_EQ(g.isBlockedLinear(i), h.isBlockedLinear(i)) << i;
+  }
+}
+
+TEST(CollisionCheck, SegmentsAndTrajectories) {
+  VoxelGrid g(0.1, Vector3i(0, 0, 0), Vector3i(50, 50, 20));
+  g.setInflationRadius(0.2);
+  for (int z = 0; z < 20; ++z) g.set(Vector3i(25, 25, z), Occupancy::kOccupied);  // thin pole
+  EXPECT_FALSE(mmh::isSegmentFree(g, Vector3d(1.0, 2.55, 1.0), Vector3d(4.0, 2.55, 1.0)));
+  EXPECT_TRUE(mmh::isSegmentFree(g, Vector3d(1.0, 1.5, 1.0), Vector3d(4.0, 1.5, 1.0)));
+  // Passes 0.25 m from the pole centre: free of occupied cells, blocked by inflation.
+  EXPECT_FALSE(mmh::isSegmentFree(g, Vector3d(1.0, 2.8, 1.0), Vector3d(4.0, 2.8, 1.0)));
+  EXPECT_TRUE(mmh::isSegmentFree(g, Vector3d(1.0, 2.8, 1.0), Vector3d(4.0, 2.8, 1.0),
+                                 mmh::CollisionLayer::kOccupied));
+  mmh::Piece p;
+  p.duration = 3.0;
+  p.coeffs(0, 0) = 1.0;
+  p.coeffs(0, 1) = 1.0;  // x = 1 + t
+  p.coeffs(1, 0) = 2.55;
+  p.coeffs(2, 0) = 1.0;
+  auto hit = mmh::firstCollisionTime(g, mmh::Trajectory({p}), 0.0, 3.0);
+  ASSERT_TRUE(hit.has_value());
+  // Blocked zone starts at x = 2.5 - 0.2 (cell centres within 0.2 m of the pole's cell).
+  EXPECT_NEAR(*hit, 1.3, 0.06);
+  EXPECT_FALSE(mmh::firstCollisionTime(g, mmh::Trajectory({p}), 0.0, 1.2).has_value());
+}
