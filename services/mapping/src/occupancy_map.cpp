@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace mmh::mapping {
@@ -155,7 +156,7 @@ void OccupancyMap::setKnown(int64_t ring, const Eigen::Vector3i& g, float log_od
                             octomap::OcTreeNode* node) {
   log_odds_[ring] = log_odds;
   node_[ring] = node;
-  window_.set(g - origin_, stateOf(log_odds));
+  states_[windowIndex(g)] = static_cast<uint8_t>(stateOf(log_odds));
   markChanged(g);
 }
 
@@ -191,9 +192,10 @@ bool OccupancyMap::followVehicle(const Eigen::Vector3d& position) {
   const Eigen::Vector3i max_origin = Eigen::Vector3i::Constant(kKeyOffset - 1) - size_;
   const Eigen::Vector3i wanted =
       (centre_cell - size_ / 2).cwiseMax(min_origin).cwiseMin(max_origin);
-  if (!window_.valid()) {
+  if (!has_window_) {
     origin_ = wanted;
-    window_ = VoxelGrid(res_, origin_, size_);
+    has_window_ = true;
+    states_.assign(static_cast<size_t>(size_.x()) * size_.y() * size_.z(), 0);
     region_lo_ = origin_;
     region_hi_ = origin_ + size_ - Eigen::Vector3i::Ones();
     loadBox(origin_, origin_ + size_);
@@ -203,7 +205,7 @@ bool OccupancyMap::followVehicle(const Eigen::Vector3d& position) {
   if (((position - centre).cwiseAbs().array() <= params_.window_recenter_m).all()) return false;
   if (wanted == origin_) return false;
   const Eigen::Vector3i old = origin_;
-  window_.shiftTo(wanted);
+  shiftStates(wanted - old);
   origin_ = wanted;
   moved_since_prune_ = true;
   region_lo_ = region_lo_.cwiseMin(origin_);
@@ -239,85 +241,192 @@ bool OccupancyMap::followVehicle(const Eigen::Vector3d& position) {
   return true;
 }
 
-void OccupancyMap::castFree(const Eigen::Vector3d& origin, const Eigen::Vector3d& end,
-                            uint8_t free_stamp, uint8_t occ_stamp) {
-  // Amanatides & Woo in voxel units; visits the cells from the origin's up to (excluding) the
-  // end's, as OctoMap's computeRayKeys does.
-  const double inv = 1.0 / res_;
-  const Eigen::Vector3d a = origin * inv, b = end * inv;
-  Eigen::Vector3i c(a.array().floor().cast<int>());
-  const Eigen::Vector3i e(b.array().floor().cast<int>());
-  const Eigen::Vector3d d = b - a;
-  int step[3];
+namespace {
+
+// Amanatides & Woo set-up in voxel units for the segment a -> b.
+struct Walk {
+  int cell[3], step[3];
   double t_max[3], t_delta[3];
-  for (int i = 0; i < 3; ++i) {
-    if (d[i] > 0.0) {
-      step[i] = 1;
-      t_max[i] = (c[i] + 1 - a[i]) / d[i];
-      t_delta[i] = 1.0 / d[i];
-    } else if (d[i] < 0.0) {
-      step[i] = -1;
-      t_max[i] = (c[i] - a[i]) / d[i];
-      t_delta[i] = -1.0 / d[i];
-    } else {
-      step[i] = 0;
-      t_max[i] = std::numeric_limits<double>::infinity();
-      t_delta[i] = std::numeric_limits<double>::infinity();
+  int steps;  // cells after the first one up to and including the last one
+  Walk(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    const Eigen::Vector3d d = b - a;
+    steps = 0;
+    for (int i = 0; i < 3; ++i) {
+      cell[i] = static_cast<int>(std::floor(a[i]));
+      const int last = static_cast<int>(std::floor(b[i]));
+      steps += std::abs(last - cell[i]);
+      if (d[i] > 0.0) {
+        step[i] = 1;
+        t_max[i] = (cell[i] + 1 - a[i]) / d[i];
+        t_delta[i] = 1.0 / d[i];
+      } else if (d[i] < 0.0) {
+        step[i] = -1;
+        t_max[i] = (cell[i] - a[i]) / d[i];
+        t_delta[i] = -1.0 / d[i];
+      } else {
+        step[i] = 0;
+        t_max[i] = std::numeric_limits<double>::infinity();
+        t_delta[i] = std::numeric_limits<double>::infinity();
+      }
     }
   }
-  const int n = (e - c).cwiseAbs().sum();
-  int r[3] = {positiveMod(c.x(), ring_.x()), positiveMod(c.y(), ring_.y()),
-              positiveMod(c.z(), ring_.z())};
-  const int lo[3] = {origin_.x(), origin_.y(), origin_.z()};
-  const int hi[3] = {origin_.x() + size_.x(), origin_.y() + size_.y(), origin_.z() + size_.z()};
-  int cell[3] = {c.x(), c.y(), c.z()};
-  for (int k = 0; k < n; ++k) {
+  int next() {  // the axis stepped
+    const int axis =
+        t_max[0] < t_max[1] ? (t_max[0] < t_max[2] ? 0 : 2) : (t_max[1] < t_max[2] ? 1 : 2);
+    cell[axis] += step[axis];
+    t_max[axis] += t_delta[axis];
+    return axis;
+  }
+};
+
+}  // namespace
+
+void OccupancyMap::castFree(const Eigen::Vector3d& origin, const Eigen::Vector3d& end,
+                            uint8_t free_stamp, uint8_t occ_stamp) {
+  // The cells from the origin's up to (excluding) the end's, as OctoMap's computeRayKeys. Plain
+  // scalars (no arrays indexed by the stepped axis) keep the walk in registers.
+  const double inv = 1.0 / res_;
+  const Walk w(origin * inv, end * inv);
+  int cx = w.cell[0], cy = w.cell[1], cz = w.cell[2];
+  int rx = positiveMod(cx, ring_.x()), ry = positiveMod(cy, ring_.y()),
+      rz = positiveMod(cz, ring_.z());
+  const int sx = w.step[0], sy = w.step[1], sz = w.step[2];
+  double tx = w.t_max[0], ty = w.t_max[1], tz = w.t_max[2];
+  const double dx = w.t_delta[0], dy = w.t_delta[1], dz = w.t_delta[2];
+  const int nx = ring_.x(), ny = ring_.y(), nz = ring_.z();
+  const int64_t bx = bricks_.x(), by = bricks_.y();
+  // Cells of the window along each axis as unsigned offsets from its origin.
+  const unsigned wx = static_cast<unsigned>(size_.x()), wy = static_cast<unsigned>(size_.y()),
+                 wz = static_cast<unsigned>(size_.z());
+  const int ox = origin_.x(), oy = origin_.y(), oz = origin_.z();
+  uint8_t* const stamps = stamp_.data();
+  for (int k = 0; k < w.steps; ++k) {
     // The window is convex: a ray that left it does not come back.
-    if (cell[0] < lo[0] || cell[1] < lo[1] || cell[2] < lo[2] || cell[0] >= hi[0] ||
-        cell[1] >= hi[1] || cell[2] >= hi[2]) {
+    if (static_cast<unsigned>(cx - ox) >= wx || static_cast<unsigned>(cy - oy) >= wy ||
+        static_cast<unsigned>(cz - oz) >= wz) {
       return;
     }
-    const int64_t idx = ringSlot(r[0], r[1], r[2]);
-    const uint8_t s = stamp_[idx];
+    const uint32_t slot =
+        static_cast<uint32_t>(((((rz >> 3) * by) + (ry >> 3)) * bx + (rx >> 3)) << 9 |
+                              ((rz & 7) << 6) | ((ry & 7) << 3) | (rx & 7));
+    const uint8_t s = stamps[slot];
     if (s != free_stamp && s != occ_stamp) {
-      stamp_[idx] = free_stamp;
-      free_list_.push_back(Touched{idx, Eigen::Vector3i(cell[0], cell[1], cell[2])});
+      stamps[slot] = free_stamp;
+      free_list_.push_back(slot);
     }
-    int axis = t_max[0] < t_max[1] ? 0 : 1;
-    if (t_max[2] < t_max[axis]) axis = 2;
-    cell[axis] += step[axis];
-    r[axis] += step[axis];
-    if (r[axis] == ring_[axis]) r[axis] = 0;
-    if (r[axis] < 0) r[axis] = ring_[axis] - 1;
-    t_max[axis] += t_delta[axis];
+    if (tx < ty && tx < tz) {
+      cx += sx;
+      rx += sx;
+      rx = rx == nx ? 0 : (rx < 0 ? nx - 1 : rx);
+      tx += dx;
+    } else if (ty < tz) {
+      cy += sy;
+      ry += sy;
+      ry = ry == ny ? 0 : (ry < 0 ? ny - 1 : ry);
+      ty += dy;
+    } else {
+      cz += sz;
+      rz += sz;
+      rz = rz == nz ? 0 : (rz < 0 ? nz - 1 : rz);
+      tz += dz;
+    }
   }
 }
 
-void OccupancyMap::apply(const Touched& t, float delta, InsertStats* stats) {
-  float& value = log_odds_[t.ring];
+Eigen::Vector3i OccupancyMap::cellOfSlot(uint32_t slot) const {
+  const int lx = slot & 7, ly = (slot >> 3) & 7, lz = (slot >> 6) & 7;
+  int64_t brick = slot >> 9;
+  const int bx = static_cast<int>(brick % bricks_.x());
+  brick /= bricks_.x();
+  const int by = static_cast<int>(brick % bricks_.y());
+  const int bz = static_cast<int>(brick / bricks_.y());
+  const Eigen::Vector3i r(8 * bx + lx, 8 * by + ly, 8 * bz + lz);
+  // The window cell congruent to r: origin + ((r - origin) mod ring).
+  Eigen::Vector3i g;
+  for (int i = 0; i < 3; ++i) g[i] = origin_[i] + positiveMod(r[i] - origin_[i], ring_[i]);
+  return g;
+}
+
+void OccupancyMap::shiftStates(const Eigen::Vector3i& shift) {
+  // In place: new cell l takes old cell l + shift. Rows are moved in the order that never
+  // overwrites a row still to be read, then the cells that entered are cleared.
+  const Eigen::Vector3i n = size_;
+  if ((shift.cwiseAbs().array() >= n.array()).any()) {
+    std::fill(states_.begin(), states_.end(), 0);
+    return;
+  }
+  const Eigen::Vector3i lo = (-shift).cwiseMax(0), hi = (n - shift).cwiseMin(n);
+  const int64_t offset = shift.x() + int64_t{n.x()} * (shift.y() + int64_t{n.y()} * shift.z());
+  auto index = [&](int x, int y, int z) { return x + int64_t{n.x()} * (y + int64_t{n.y()} * z); };
+  const size_t row = static_cast<size_t>(hi.x() - lo.x());
+  auto moveRow = [&](int y, int z) {
+    const int64_t dst = index(lo.x(), y, z);
+    std::memmove(&states_[dst], &states_[dst + offset], row);
+  };
+  if (offset > 0) {
+    for (int z = lo.z(); z < hi.z(); ++z)
+      for (int y = lo.y(); y < hi.y(); ++y) moveRow(y, z);
+  } else if (offset < 0) {
+    for (int z = hi.z() - 1; z >= lo.z(); --z)
+      for (int y = hi.y() - 1; y >= lo.y(); --y) moveRow(y, z);
+  }
+  for (int z = 0; z < n.z(); ++z) {
+    for (int y = 0; y < n.y(); ++y) {
+      uint8_t* r = &states_[index(0, y, z)];
+      if (z < lo.z() || z >= hi.z() || y < lo.y() || y >= hi.y()) {
+        std::memset(r, 0, n.x());
+      } else {
+        std::memset(r, 0, lo.x());
+        std::memset(r + hi.x(), 0, n.x() - hi.x());
+      }
+    }
+  }
+}
+
+Occupancy OccupancyMap::stateAt(const Eigen::Vector3d& p) const {
+  const Eigen::Vector3i g((p / res_).array().floor().cast<int>());
+  if (!has_window_ || !inWindow(g)) return Occupancy::kUnknown;
+  return static_cast<Occupancy>(states_[windowIndex(g)]);
+}
+
+VoxelGrid OccupancyMap::window() const {
+  VoxelGrid grid(res_, origin_, size_);
+  for (size_t i = 0; i < states_.size(); ++i) {
+    if (states_[i] != 0)
+      grid.setLinear(static_cast<int64_t>(i), static_cast<Occupancy>(states_[i]));
+  }
+  return grid;
+}
+
+void OccupancyMap::apply(uint32_t slot, float delta, InsertStats* stats) {
+  float& value = log_odds_[slot];
   const bool known = !std::isnan(value);
   const float old = known ? value : 0.0f;
   const float updated = std::clamp(old + delta, clamp_min_, clamp_max_);
   if (known && updated == old) return;  // clamped already: nothing changes
   ++stats->cells_updated;
   value = updated;
-  octomap::OcTreeNode*& node = node_[t.ring];
+  octomap::OcTreeNode*& node = node_[slot];
+  const Occupancy state = stateOf(updated);
+  const bool state_changed = !known || stateOf(old) != state;
   if (node) {
     node->setLogOdds(updated);
-  } else {
-    node = tree_->setNodeValue(toKey(t.cell), updated, /*lazy_eval=*/true);
+    if (!state_changed) return;
+  }
+  const Eigen::Vector3i g = cellOfSlot(slot);
+  if (!node) {
+    node = tree_->setNodeValue(toKey(g), updated, /*lazy_eval=*/true);
     ++stats->nodes_created;
   }
-  const Occupancy state = stateOf(updated);
-  if (!known || stateOf(old) != state) {
-    window_.set(t.cell - origin_, state);
-    markChanged(t.cell);
+  if (state_changed) {
+    states_[windowIndex(g)] = static_cast<uint8_t>(state);
+    markChanged(g);
   }
 }
 
 InsertStats OccupancyMap::insert(const FilteredScan& scan) {
   InsertStats stats;
-  if (!window_.valid()) return stats;
+  if (!has_window_) return stats;
   // Two stamps per scan; on wrap-around (every 126 scans) every stamp is cleared.
   if (generation_ >= 126) {
     std::fill(stamp_.begin(), stamp_.end(), 0);
@@ -338,19 +447,17 @@ InsertStats OccupancyMap::insert(const FilteredScan& scan) {
     const int64_t idx = ringIndex(g);
     if (stamp_[idx] == occ_stamp) continue;
     stamp_[idx] = occ_stamp;
-    occupied_list_.push_back(Touched{idx, g});
+    occupied_list_.push_back(static_cast<uint32_t>(idx));
   }
-  for (const Eigen::Vector3f& p : scan.returns) {
-    castFree(scan.origin, p.cast<double>(), free_stamp, occ_stamp);
-  }
-  for (const Eigen::Vector3f& p : scan.free_ends) {
-    castFree(scan.origin, p.cast<double>(), free_stamp, occ_stamp);
+  for (const auto* ends : {&scan.returns, &scan.free_ends}) {
+    for (const Eigen::Vector3f& p : *ends)
+      castFree(scan.origin, p.cast<double>(), free_stamp, occ_stamp);
   }
   stats.rays = scan.returns.size() + scan.free_ends.size();
   stats.cells_occupied = occupied_list_.size();
   stats.cells_free = free_list_.size();
-  for (const Touched& t : occupied_list_) apply(t, log_hit_, &stats);
-  for (const Touched& t : free_list_) apply(t, log_miss_, &stats);
+  for (uint32_t slot : occupied_list_) apply(slot, log_hit_, &stats);
+  for (uint32_t slot : free_list_) apply(slot, log_miss_, &stats);
   return stats;
 }
 
@@ -359,14 +466,14 @@ std::vector<CellChange> OccupancyMap::takeChanges() {
   linear.reserve(changed_.size());
   for (int64_t packed : changed_) {
     const Eigen::Vector3i g = unpack(packed);
-    if (inWindow(g)) linear.push_back(window_.linearIndex(g - origin_));
+    if (inWindow(g)) linear.push_back(windowIndex(g));
   }
   changed_.clear();
   std::sort(linear.begin(), linear.end());
   linear.erase(std::unique(linear.begin(), linear.end()), linear.end());
   std::vector<CellChange> out;
   out.reserve(linear.size());
-  for (int64_t i : linear) out.emplace_back(i, window_.atLinear(i));
+  for (int64_t i : linear) out.emplace_back(i, static_cast<Occupancy>(states_[i]));
   return out;
 }
 
@@ -379,7 +486,7 @@ Occupancy OccupancyMap::query(const Eigen::Vector3d& p) const {
 }
 
 void OccupancyMap::pruneOutsideWindow() {
-  if (!window_.valid() || !moved_since_prune_) return;
+  if (!has_window_ || !moved_since_prune_) return;
   // Only the region the window covered since the last pruning can hold new prunable nodes.
   const Eigen::Vector3i last = origin_ + size_ - Eigen::Vector3i::Ones();
   tree_->pruneOutside(origin_, last, region_lo_, region_hi_);

@@ -55,8 +55,8 @@ TEST(Mapper, KeyframesAndDeltasRebuildTheSameMap) {
     std::string why;
     ASSERT_EQ(receiver.apply(r.map, &why), Result::kApplied) << why;
     // The receiver's window equals the sender's, cell for cell, after every message.
-    ASSERT_EQ(receiver.grid().originIndex(), mapper.map().window().originIndex());
-    ASSERT_EQ(receiver.grid().rawCells(), mapper.map().window().rawCells()) << "message " << k;
+    ASSERT_EQ(receiver.grid().originIndex(), mapper.map().windowOrigin());
+    ASSERT_EQ(receiver.grid().rawCells(), mapper.map().windowStates()) << "message " << k;
   }
   EXPECT_TRUE(flight.scans.size() > 15);
   EXPECT_EQ(keyframes, 3);  // the first, then one per second (15 frames)
@@ -78,7 +78,7 @@ TEST(Mapper, AGapIsDetectedAndTheNextKeyframeHealsIt) {
     results.push_back(receiver.apply(r.map));
     if (r.keyframe && k > 4) {
       EXPECT_EQ(results.back(), Result::kApplied);
-      EXPECT_EQ(receiver.grid().rawCells(), mapper.map().window().rawCells());
+      EXPECT_EQ(receiver.grid().rawCells(), mapper.map().windowStates());
       break;
     }
   }

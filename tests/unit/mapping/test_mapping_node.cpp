@@ -99,7 +99,7 @@ TEST(MappingNode, MapsGoodScansAndCountsBadOnesWithoutCrashing) {
   ASSERT_EQ(listener.maps.size(), 3u);  // good, with_nan, after
   EXPECT_EQ(listener.maps[1].kind, mmh::local_map_t::KIND_DELTA);
   for (auto r : listener.results) EXPECT_EQ(r, mmh::LocalMapReceiver::Result::kApplied);
-  EXPECT_EQ(listener.receiver.grid().rawCells(), node.mapper().map().window().rawCells());
+  EXPECT_EQ(listener.receiver.grid().rawCells(), node.mapper().map().windowStates());
   // The heartbeat carries the counters.
   map_ctx.publishHeartbeat();
 }

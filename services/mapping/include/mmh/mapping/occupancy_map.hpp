@@ -59,9 +59,16 @@ class OccupancyMap {
   std::vector<CellChange> takeChanges();
   void clearChanges() { changed_.clear(); }
 
-  bool hasWindow() const { return window_.valid(); }
-  // The published window: unknown / free / occupied per cell.
-  const VoxelGrid& window() const { return window_; }
+  bool hasWindow() const { return has_window_; }
+  // The published window: cell (0,0,0) is global voxel windowOrigin(); states (unknown / free /
+  // occupied, as Occupancy) in VoxelGrid order (x fastest), i.e. what LOCAL_MAP receivers hold.
+  const Eigen::Vector3i& windowOrigin() const { return origin_; }
+  const Eigen::Vector3i& windowSize() const { return size_; }
+  double resolution() const { return res_; }
+  const std::vector<uint8_t>& windowStates() const { return states_; }
+  Occupancy stateAt(const Eigen::Vector3d& p) const;
+  // A VoxelGrid copy of the window (allocates; for tests and tools).
+  VoxelGrid window() const;
   // State of any point from the tree (outside the window too).
   Occupancy query(const Eigen::Vector3d& p) const;
   const octomap::OcTree& octree() const;
@@ -70,10 +77,6 @@ class OccupancyMap {
   void pruneOutsideWindow();
 
  private:
-  struct Touched {
-    int64_t ring;
-    Eigen::Vector3i cell;  // global voxel index
-  };
   int64_t ringIndex(const Eigen::Vector3i& g) const;
   // Bricks of 8 x 8 x 8 cells are contiguous, so that the cells a scan touches share cache lines.
   int64_t ringSlot(int rx, int ry, int rz) const {
@@ -86,10 +89,18 @@ class OccupancyMap {
   }
   void resetBox(const Eigen::Vector3i& lo, const Eigen::Vector3i& hi);  // global, hi exclusive
   void loadBox(const Eigen::Vector3i& lo, const Eigen::Vector3i& hi);
+  // Global cell of a ring slot (the one inside the window).
+  Eigen::Vector3i cellOfSlot(uint32_t slot) const;
+  int64_t windowIndex(const Eigen::Vector3i& g) const {
+    return (g.x() - origin_.x()) +
+           static_cast<int64_t>(size_.x()) *
+               ((g.y() - origin_.y()) + static_cast<int64_t>(size_.y()) * (g.z() - origin_.z()));
+  }
+  void shiftStates(const Eigen::Vector3i& shift);
   void setKnown(int64_t ring, const Eigen::Vector3i& g, float log_odds, octomap::OcTreeNode* node);
   void castFree(const Eigen::Vector3d& origin, const Eigen::Vector3d& end, uint8_t free_stamp,
                 uint8_t occ_stamp);
-  void apply(const Touched& t, float delta, InsertStats* stats);
+  void apply(uint32_t slot, float delta, InsertStats* stats);
   Occupancy stateOf(float log_odds) const {
     return log_odds > occ_threshold_ ? Occupancy::kOccupied : Occupancy::kFree;
   }
@@ -102,7 +113,8 @@ class OccupancyMap {
   std::unique_ptr<Tree> tree_;
   Eigen::Vector3i origin_ = Eigen::Vector3i::Zero();
   Eigen::Vector3i size_ = Eigen::Vector3i::Zero();
-  VoxelGrid window_;
+  bool has_window_ = false;
+  std::vector<uint8_t> states_;  // published state per window cell (VoxelGrid order)
   // Ring buffer over the window: global cell g lives in slot (g mod ring_) per axis, stored in
   // bricks of 8^3 cells.
   Eigen::Vector3i ring_ = Eigen::Vector3i::Zero(), bricks_ = Eigen::Vector3i::Zero();
@@ -110,8 +122,8 @@ class OccupancyMap {
   std::vector<float> log_odds_;             // NaN = unknown
   std::vector<uint8_t> stamp_;              // per-scan marks: 2 gen = free, 2 gen + 1 = hit
   uint8_t generation_ = 0;
-  std::vector<Touched> occupied_list_, free_list_;
-  std::vector<int64_t> changed_;  // packed global cells whose state changed
+  std::vector<uint32_t> occupied_list_, free_list_;  // ring slots touched by the scan
+  std::vector<int64_t> changed_;                     // packed global cells whose state changed
   bool moved_since_prune_ = false;
   // Bounding box (inclusive) of the windows since the last pruning.
   Eigen::Vector3i region_lo_ = Eigen::Vector3i::Zero(), region_hi_ = Eigen::Vector3i::Zero();
