@@ -34,6 +34,20 @@ InitialGuess guessFromSteadyStart(const KinematicState& start, const Eigen::Vect
                                   const GuessOptions& options) {
   Polyline path;
   path.points.push_back(start.position);
+  // With waypoints a sideways start velocity is not braked beside the path (the offset would
+  // still be there at the first waypoint): the path first runs straight on to where braking
+  // stops, a corner like the waypoints' but free to move.
+  int free_corner = -1;
+  if (!waypoints.empty()) {
+    const Eigen::Vector3d first = waypoints.front() - start.position;
+    const Eigen::Vector3d v = start.velocity;
+    if (first.norm() > 1e-9 && (v - first.normalized() * v.dot(first.normalized())).norm() > 1e-6) {
+      // (A little further than the braking distance: the smoothing lags by up to a ramp.)
+      path.points.push_back(start.position +
+                            v * (v.norm() / (1.8 * options.a_max) + options.ramp_s));
+      free_corner = 1;
+    }
+  }
   for (const Eigen::Vector3d& w : waypoints) path.points.push_back(w);
   path.points.push_back(target);
   path.cum.push_back(0.0);
@@ -41,16 +55,12 @@ InitialGuess guessFromSteadyStart(const KinematicState& start, const Eigen::Vect
     path.cum.push_back(path.cum.back() + (path.points[i] - path.points[i - 1]).norm());
   const double length = path.cum.back();
 
-  // Corner speed caps: turning the velocity by theta within turn_s takes an acceleration of
-  // about 2 v sin(theta / 2) / turn_s.
+  // At a waypoint where the path turns the guess stops (the velocity turns at rest, so the guess
+  // stays inside the limits); the optimiser then rounds the corner as far as the limits allow.
   std::vector<std::pair<double, double>> caps;
   for (size_t i = 1; i + 1 < path.points.size(); ++i) {
-    const double cos_turn =
-        std::clamp(path.direction(static_cast<int>(i) - 1).dot(path.direction(i)), -1.0, 1.0);
-    const double sin_half = std::sqrt(0.5 * (1.0 - cos_turn));
-    double cap = options.v_max;
-    if (sin_half > 1e-6) cap = std::min(cap, options.a_max * options.turn_s / (2.0 * sin_half));
-    caps.emplace_back(path.cum[i], cap);
+    const double cos_turn = path.direction(static_cast<int>(i) - 1).dot(path.direction(i));
+    caps.emplace_back(path.cum[i], cos_turn > std::cos(1e-3) ? options.v_max : 0.0);
   }
 
   // Split the start velocity into a part along the first segment and a sideways part.
@@ -106,16 +116,6 @@ InitialGuess guessFromSteadyStart(const KinematicState& start, const Eigen::Vect
   for (size_t i = 1; i + 1 < path.points.size(); ++i)
     cuts.push_back({along.timeAt(path.cum[i]), static_cast<int>(i)});
   std::sort(cuts.begin(), cuts.end(), [](const Cut& a, const Cut& b) { return a.t < b.t; });
-  // The velocity turns at a waypoint over the pieces next to it: keep them long enough.
-  std::vector<Cut> spaced;
-  for (const Cut& c : cuts) {
-    bool near_waypoint = false;
-    for (const Cut& w : cuts)
-      near_waypoint = near_waypoint || (w.waypoint >= 0 && c.waypoint < 0 &&
-                                        std::abs(w.t - c.t) < 0.5 * options.turn_s);
-    if (!near_waypoint) spaced.push_back(c);
-  }
-  cuts.swap(spaced);
   std::vector<Cut> kept;
   double prev = 0.0;
   for (const Cut& c : cuts) {
@@ -151,17 +151,22 @@ InitialGuess guessFromSteadyStart(const KinematicState& start, const Eigen::Vect
     k.p = path.pointAt(s.s) + side_dir * l.s;
     k.v = d * s.v + side_dir * l.v;
     k.a = d * s.a + side_dir * l.a;
-    if (c.waypoint >= 0) {
-      // Through the corner along the bisector of the two segments, at the profile's speed.
+    if (c.waypoint >= 0 && c.waypoint == free_corner) {
+      k.p = path.points[c.waypoint];
+      k.v = path.direction(c.waypoint) * s.v;
+      k.a = path.direction(c.waypoint) * s.a;
+    } else if (c.waypoint >= 0) {
+      // On the corner itself: moving (slowly, the profile stops there) along the bisector of the
+      // two segments, accelerating along the one the profile is on.
       const Eigen::Vector3d in = path.direction(c.waypoint - 1), out = path.direction(c.waypoint);
       const Eigen::Vector3d bisector = in + out;
       k.p = path.points[c.waypoint];
       k.v = (bisector.norm() > 1e-6 ? Eigen::Vector3d(bisector.normalized()) : out) * s.v +
             side_dir * l.v;
-      k.a = side_dir * l.a;
+      k.a = (s.a >= 0.0 ? out : in) * s.a + side_dir * l.a;
     }
     g.knots.push_back(k);
-    g.fixed.push_back(c.waypoint >= 0);
+    g.fixed.push_back(c.waypoint >= 0 && c.waypoint != free_corner);
   }
   KnotState last;
   last.p = target;

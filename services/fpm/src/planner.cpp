@@ -69,8 +69,26 @@ bool Planner::validate(const Request& r, Result& out) const {
 Result Planner::plan(const Request& request) const {
   Result out;
   if (!validate(request, out)) return out;
+  // A guess that is not exactly inside the limits (sideways starts, corners) or a result that
+  // oversteps them between penalty samples is retried with wider margins: the whole plan is
+  // made again, more conservatively.
+  double margin = params_.limit_margin_ratio;
+  for (int attempt = 0; attempt < 3; ++attempt, margin = std::min(0.2, 4.0 * margin + 0.01)) {
+    if (attempt > 0) ++out.repairs;
+    if (planWithMargin(request, margin, out)) return out;
+  }
+  out.ok = false;
+  out.trajectory = Trajectory();
+  out.reason = plan_result_t::REASON_VERIFY;
+  out.detail = "limits still broken with the widest margin: max speed " +
+               std::to_string(out.max_speed) + " m/s, max acceleration " +
+               std::to_string(out.max_acc) + " m/s^2";
+  return out;
+}
+
+bool Planner::planWithMargin(const Request& request, double margin_ratio, Result& out) const {
   const double vmax = params_.max_vel_mps, amax = params_.max_acc_mps2;
-  const double margin = 1.0 - params_.limit_margin_ratio;
+  const double margin = 1.0 - margin_ratio;
 
   GuessOptions guess_options;
   guess_options.v_max = vmax * margin;
@@ -103,7 +121,8 @@ Result Planner::plan(const Request& request) const {
 
   OptimizerSettings settings;
   // A start at full speed cannot keep the margin: let the penalties start at the start speed.
-  settings.v_limit = std::max(vmax * margin, std::min(vmax, request.start.velocity.norm()));
+  const double v_limit = std::max(vmax * margin, std::min(vmax, request.start.velocity.norm()));
+  settings.v_limit = v_limit;
   settings.a_limit = amax * margin;
   settings.time_weight = params_.time_weight;
   settings.penalty_weight = params_.penalty_weight;
@@ -115,8 +134,8 @@ Result Planner::plan(const Request& request) const {
   // Exact check of the limits over the whole trajectory (Bernstein bounds, limit_check.hpp).
   // The penalties only see samples; if the result breaks a limit between them, re-optimise once
   // with the penalty limits lowered by the overshoot and denser samples. Of the candidates that
-  // pass - including the initial guess, an S-curve inside the limits by construction - the one
-  // with the lowest cost wins; if none passes, the best is slowed down until it does.
+  // pass - including the initial guess, an S-curve inside the limits by construction when the
+  // start moves along the path - the one with the lowest cost wins.
   Trajectory traj = optimizer.trajectory();
   LimitReport limits = measureLimits(traj);
   if (!limits.within(vmax, amax)) {
@@ -138,33 +157,17 @@ Result Planner::plan(const Request& request) const {
       limits = initial_limits;
     }
   }
-  constexpr int kStretches = 12;
-  for (int k = 0; k < kStretches && traj.isFinite() && !limits.within(vmax, amax); ++k) {
-    ++out.repairs;
-    optimizer.stretch(std::max({1.005, limits.max_speed / vmax, std::sqrt(limits.max_acc / amax)}));
-    traj = optimizer.trajectory();
-    limits = measureLimits(traj);
-  }
   out.max_speed = limits.max_speed;
   out.max_acc = limits.max_acc;
-  if (!traj.isFinite()) {
-    out.reason = plan_result_t::REASON_OPTIMIZER;
-    out.detail = "optimiser produced a non-finite trajectory";
-    return out;
-  }
-  if (!limits.within(vmax, amax)) {
-    out.reason = plan_result_t::REASON_VERIFY;
-    out.detail = "limits still broken after repair: max speed " + std::to_string(limits.max_speed) +
-                 " m/s, max acceleration " + std::to_string(limits.max_acc) + " m/s^2";
-    return out;
-  }
+  if (!traj.isFinite() || !limits.within(vmax, amax)) return false;
   out.ok = true;
   out.reason = plan_result_t::REASON_NONE;
+  out.detail.clear();
   out.trajectory = std::move(traj);
-  settings.v_limit = std::max(vmax * margin, std::min(vmax, request.start.velocity.norm()));
+  settings.v_limit = v_limit;
   settings.a_limit = amax * margin;
   out.cost = optimizer.costs(settings);
-  return out;
+  return true;
 }
 
 }  // namespace mmh::fpm

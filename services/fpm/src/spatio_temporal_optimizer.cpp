@@ -228,14 +228,6 @@ int SpatioTemporalOptimizer::optimize(const OptimizerSettings& settings) {
   return evaluations_ + 1;
 }
 
-void SpatioTemporalOptimizer::stretch(double factor) {
-  durations_ *= factor;
-  for (size_t i = 1; i + 1 < knots_.size(); ++i) {
-    knots_[i].v /= factor;
-    knots_[i].a /= factor * factor;
-  }
-}
-
 CostBreakdown SpatioTemporalOptimizer::costs(const OptimizerSettings& settings) {
   settings_ = settings;
   const std::vector<double> x = pack();

@@ -25,7 +25,6 @@ struct GuessOptions {
   double ramp_s = 0.15;             // acceleration ramps of the S-curves
   double max_piece_s = 3.0;         // longer stretches are split
   double min_piece_s = 0.02;        // knots closer than this are merged
-  double turn_s = 0.6;              // time over which the velocity turns at a waypoint
 };
 
 InitialGuess makeInitialGuess(const KinematicState& start, const Eigen::Vector3d& target,

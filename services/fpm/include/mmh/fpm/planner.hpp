@@ -30,7 +30,7 @@ struct Result {
   double max_speed = 0.0, max_acc = 0.0;  // exact maxima of the returned trajectory
   double profile_duration = 0.0;          // trapezoidal profile of the initial guess (a bound)
   int evaluations = 0;                    // cost evaluations over all optimisation runs
-  int repairs = 0;                        // re-optimisations / stretches after a failed check
+  int repairs = 0;  // re-optimisations and retries with wider margins after a failed check
 };
 
 class Planner {
@@ -43,6 +43,9 @@ class Planner {
  private:
   // Checks the request; fills reason and detail and returns false if it cannot be planned.
   bool validate(const Request& request, Result& result) const;
+  // One complete attempt with the guess and the penalties `margin_ratio` below the limits; true
+  // (and `out` filled) when a candidate passes the exact limit check.
+  bool planWithMargin(const Request& request, double margin_ratio, Result& out) const;
 
   Params params_;
 };

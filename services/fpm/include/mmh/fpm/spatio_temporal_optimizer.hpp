@@ -46,11 +46,6 @@ class SpatioTemporalOptimizer {
   // evaluations.
   int optimize(const OptimizerSettings& settings);
 
-  // Slow the trajectory down by `factor` (> 1) while keeping the start state: durations grow by
-  // the factor, inner knot velocities shrink by it and accelerations by its square (an exact time
-  // scaling of every piece but the first).
-  void stretch(double factor);
-
   const std::vector<KnotState>& knots() const { return knots_; }
   const Eigen::VectorXd& durations() const { return durations_; }
   Trajectory trajectory() const { return hermiteTrajectory(knots_, durations_); }
