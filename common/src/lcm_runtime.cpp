@@ -167,6 +167,7 @@ int runNode(lcm::LCM& lcm, const std::vector<ServiceContext*>& contexts,
   }
   while (!stopRequested()) {
     const int status = lcm.handleTimeout(poll_ms);
+    if (status < 0 && stopRequested()) break;  // the signal interrupted the wait
     if (status < 0) {
       logError("LCM handle failed; stopping");
       return 1;

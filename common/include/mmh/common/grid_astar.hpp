@@ -20,6 +20,9 @@ struct AStarOptions {
   // When the start lies in the inflated (but not occupied) zone, cells within this distance of it
   // may be crossed so that the vehicle can leave the margin it is in.
   double start_escape_radius_m = 0.0;
+  // Weighted A*: the heuristic is multiplied by this (>= 1). Above 1 the search expands far
+  // fewer cells and the path may be longer by at most this factor.
+  double heuristic_weight = 1.0;
 };
 
 struct AStarResult {

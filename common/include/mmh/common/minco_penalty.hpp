@@ -24,27 +24,32 @@ double integratePenalty(const MincoJerk& minco, int samples_per_piece, Penalty&&
   const Eigen::MatrixX3d& c = minco.coeffs();
   const Eigen::VectorXd& durations = minco.durations();
   double total = 0.0;
-  Eigen::Matrix<double, 6, 1> b0, b1, b2, b3;  // basis of position .. jerk at t
+  Eigen::Matrix<double, 6, 1> b0, b1, b2;  // bases of position .. acceleration at t
   for (int i = 0; i < minco.numPieces(); ++i) {
+    // Coefficient rows of piece i (ascending powers), one column per axis.
     const Eigen::Matrix<double, 6, 3> ci = c.block<6, 3>(6 * i, 0);
+    const Eigen::RowVector3d k0 = ci.row(0), k1 = ci.row(1), k2 = ci.row(2), k3 = ci.row(3),
+                             k4 = ci.row(4), k5 = ci.row(5);
     const double step = durations[i] / samples_per_piece;
     for (int j = 0; j <= samples_per_piece; ++j) {
-      const double t = j * step, t2 = t * t, t3 = t2 * t, t4 = t3 * t, t5 = t4 * t;
-      b0 << 1.0, t, t2, t3, t4, t5;
-      b1 << 0.0, 1.0, 2.0 * t, 3.0 * t2, 4.0 * t3, 5.0 * t4;
-      b2 << 0.0, 0.0, 2.0, 6.0 * t, 12.0 * t2, 20.0 * t3;
-      b3 << 0.0, 0.0, 0.0, 6.0, 24.0 * t, 60.0 * t2;
-      PenaltyPoint point{i,
-                         t,
-                         static_cast<double>(j) / samples_per_piece,
-                         ci.transpose() * b0,
-                         ci.transpose() * b1,
-                         ci.transpose() * b2,
-                         ci.transpose() * b3};
+      const double t = j * step;
+      // Horner evaluation of the state; the bases are built only where the penalty is active.
+      PenaltyPoint point{
+          i,
+          t,
+          static_cast<double>(j) / samples_per_piece,
+          (k0 + t * (k1 + t * (k2 + t * (k3 + t * (k4 + t * k5))))).transpose(),
+          (k1 + t * (2.0 * k2 + t * (3.0 * k3 + t * (4.0 * k4 + t * 5.0 * k5)))).transpose(),
+          (2.0 * k2 + t * (6.0 * k3 + t * (12.0 * k4 + t * 20.0 * k5))).transpose(),
+          (6.0 * k3 + t * (24.0 * k4 + t * 60.0 * k5)).transpose()};
       Eigen::Vector3d gp = Eigen::Vector3d::Zero(), gv = Eigen::Vector3d::Zero(),
                       ga = Eigen::Vector3d::Zero();
       const double value = penalty(point, gp, gv, ga);
       if (value == 0.0 && gp.isZero() && gv.isZero() && ga.isZero()) continue;
+      const double t2 = t * t, t3 = t2 * t, t4 = t3 * t, t5 = t4 * t;
+      b0 << 1.0, t, t2, t3, t4, t5;
+      b1 << 0.0, 1.0, 2.0 * t, 3.0 * t2, 4.0 * t3, 5.0 * t4;
+      b2 << 0.0, 0.0, 2.0, 6.0 * t, 12.0 * t2, 20.0 * t3;
       const double weight = (j == 0 || j == samples_per_piece) ? 0.5 : 1.0;
       const double scale = weight * step;
       grad_coeffs.block<6, 3>(6 * i, 0) +=

@@ -1,0 +1,77 @@
+// The Standard Optimization Mode pipeline, without LCM: checks of the request, A* on the
+// inflated grid, safe flight corridor, MINCO optimisation, independent verification. Reports
+// which step failed and how long each step took.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "mmh/common/grid_astar.hpp"
+#include "mmh/common/trajectory.hpp"
+#include "mmh/common/voxel_grid.hpp"
+#include "mmh/som/corridor.hpp"
+#include "mmh/som/params.hpp"
+#include "mmh/som/trajectory_optimizer.hpp"
+#include "mmh/som/verification.hpp"
+
+namespace mmh::som {
+
+enum class PlanStatus {
+  kOk,
+  kBadInput,           // NaN/Inf, start outside the window or the geofence
+  kNoMap,              // empty grid
+  kStartInObstacle,    // start in an occupied voxel
+  kTargetInObstacle,   // target inside the inflated obstacles
+  kTargetOutOfBounds,  // target outside the geofence or the map window
+  kInfeasibleStart,    // start speed or acceleration above the limits
+  kNoPath,             // A* found no path (or ran out of its node budget)
+  kCorridor,           // the safe flight corridor could not be built
+  kOptimizer,          // the optimiser produced no usable result
+  kVerify,             // the result failed the independent verification
+};
+const char* toString(PlanStatus status);
+
+// Wall-clock time of each step of one plan() call, microseconds.
+struct PlanTimings {
+  double checks_us = 0.0, astar_us = 0.0, corridor_us = 0.0, optimize_us = 0.0, verify_us = 0.0,
+         total_us = 0.0;
+};
+
+struct PlanOutput {
+  PlanStatus status = PlanStatus::kBadInput;
+  std::string detail;
+  Trajectory trajectory;              // verified; set only with kOk
+  std::vector<Eigen::Vector3d> path;  // shortened A* path
+  Corridor corridor;
+  std::vector<int> piece_polytope;
+  double cost_total = 0.0, cost_control = 0.0, cost_time = 0.0, cost_penalty = 0.0;
+  int optimizer_evaluations = 0;
+  int64_t astar_expansions = 0;
+  VerifyReport verify;
+  PlanTimings timings;
+  bool ok() const { return status == PlanStatus::kOk; }
+};
+
+class Planner {
+ public:
+  explicit Planner(const SomParams& params);
+  const SomParams& params() const { return params_; }
+
+  // Trajectory from `start` (any state within the limits) to `target` at rest on `grid`, whose
+  // inflation radius is the planning margin.
+  PlanOutput plan(const VoxelGrid& grid, const KinematicState& start,
+                  const Eigen::Vector3d& target);
+
+ private:
+  SomParams params_;
+  GridAStar astar_;
+  CorridorBuilder corridor_builder_;
+  TrajectoryOptimizer optimizer_;
+};
+
+// Lower bound on the duration of a rest-to-rest flight along a path of this length under the
+// limits (BENCHMARK.md): L / v + v / a, or 2 sqrt(L / a) when v_max is not reached.
+double restToRestTimeBound(double length_m, double max_vel_mps, double max_acc_mps2);
+
+}  // namespace mmh::som

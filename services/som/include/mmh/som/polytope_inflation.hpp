@@ -1,0 +1,47 @@
+// FIRI-style inflation of one convex polytope around a seed segment (after Wang et al., T-RO
+// 2022): alternate (1) a greedy set of separating hyperplanes, each through the obstacle point
+// nearest in the metric of the current ellipsoid and as far from the ellipsoid centre as the
+// seed allows, until no obstacle point is left inside, with (2) the maximum-volume ellipsoid
+// inscribed in the result, which re-centres and re-shapes the metric for the next round.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "mmh/som/ellipsoid.hpp"
+#include "mmh/som/polytope.hpp"
+
+namespace mmh::som {
+
+struct InflationOptions {
+  int iterations = 2;  // hyperplane rounds; an ellipsoid step runs between two rounds
+  InscribedEllipsoidOptions ellipsoid;
+  double plane_offset_m = 1e-6;  // every excluded point ends up this far outside its face
+};
+
+// The hyperplane through x (in the ellipsoid's unit-ball coordinates) that keeps the seed end
+// points ua and ub on the origin's side and is farthest from the origin: y with y . x = 1,
+// y . ua <= 1 - m, y . ub <= 1 - m and |y| minimal (a 3-variable QP solved by enumerating its
+// active sets); the face is {u : y . u <= 1}. False if no such plane exists (x on the seed).
+bool separatingPlane(const Eigen::Vector3d& x, const Eigen::Vector3d& ua, const Eigen::Vector3d& ub,
+                     Eigen::Vector3d* y, double seed_margin = 0.0);
+
+class PolytopeInflator {
+ public:
+  // Polytope inside the box [lo, hi] that contains the seed segment [a, b] and excludes every
+  // point of `points` (strictly). The seed must lie in the box. False if some point lies on the
+  // seed. `ellipsoid` receives the metric of the last hyperplane round.
+  bool inflate(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& lo,
+               const Eigen::Vector3d& hi, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+               const InflationOptions& options, Polytope* poly, Ellipsoid* ellipsoid);
+
+  // One hyperplane round: adds faces to `poly` until it excludes every point of `points`.
+  bool exclude(const std::vector<Eigen::Vector3d>& points, const Ellipsoid& metric,
+               const Eigen::Vector3d& a, const Eigen::Vector3d& b, double offset, Polytope* poly);
+
+ private:
+  std::vector<double> dist2_;
+  std::vector<int> alive_;
+};
+
+}  // namespace mmh::som

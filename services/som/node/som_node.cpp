@@ -1,0 +1,133 @@
+#include "som_node.hpp"
+
+#include <cstdio>
+
+#include "mmh/common/log.hpp"
+#include "mmh/common/msg_convert.hpp"
+
+namespace mmh {
+
+int16_t reasonCode(som::PlanStatus status) {
+  using S = som::PlanStatus;
+  switch (status) {
+    case S::kOk:
+      return plan_result_t::REASON_NONE;
+    case S::kBadInput:
+      return plan_result_t::REASON_BAD_INPUT;
+    case S::kNoMap:
+      return plan_result_t::REASON_NO_MAP;
+    case S::kStartInObstacle:
+      return plan_result_t::REASON_START_IN_OBSTACLE;
+    case S::kTargetInObstacle:
+      return plan_result_t::REASON_TARGET_IN_OBSTACLE;
+    case S::kTargetOutOfBounds:
+      return plan_result_t::REASON_TARGET_OUT_OF_BOUNDS;
+    case S::kInfeasibleStart:
+      return plan_result_t::REASON_INFEASIBLE_START;
+    case S::kNoPath:
+      return plan_result_t::REASON_NO_PATH;
+    case S::kCorridor:
+      return plan_result_t::REASON_CORRIDOR;
+    case S::kOptimizer:
+      return plan_result_t::REASON_OPTIMIZER;
+    case S::kVerify:
+      return plan_result_t::REASON_VERIFY;
+  }
+  return plan_result_t::REASON_BAD_INPUT;
+}
+
+SomNode::SomNode(ServiceContext& ctx, const Config& config)
+    : ctx_(ctx),
+      receiver_(config.getDouble("map.inflation_m", 0.0, 5.0)),
+      planner_(som::loadSomParams(config)) {
+  ctx_.subscribe(channels::kLocalMap, &SomNode::onLocalMap, this);
+  ctx_.subscribe(channels::kPlanRequestSom, &SomNode::onPlanRequest, this);
+}
+
+void SomNode::onLocalMap(const local_map_t& msg) {
+  std::string reason;
+  switch (receiver_.apply(msg, &reason)) {
+    case LocalMapReceiver::Result::kApplied:
+      ctx_.increment("maps_applied");
+      break;
+    case LocalMapReceiver::Result::kGap:
+      ctx_.increment("map_gap");
+      break;
+    case LocalMapReceiver::Result::kWaitingForKeyframe:
+      ctx_.increment("map_waiting_for_keyframe");
+      break;
+    case LocalMapReceiver::Result::kStale:
+      ctx_.increment("map_stale");
+      break;
+    case LocalMapReceiver::Result::kRejected:
+      ctx_.reject("map_rejected", "LOCAL_MAP: " + reason);
+      break;
+  }
+}
+
+void SomNode::onPlanRequest(const plan_request_t& req) {
+  const int64_t t0 = wallTimeUs();
+  plan_result_t result{};
+  if (req.mode != plan_request_t::MODE_SOM) {
+    result.status = plan_result_t::STATUS_FAILED;
+    result.reason = plan_result_t::REASON_BAD_INPUT;
+    result.detail = "request mode is not SOM";
+    answer(req, result, wallTimeUs() - t0);
+    return;
+  }
+  if (!receiver_.hasMap()) {
+    result.status = plan_result_t::STATUS_FAILED;
+    result.reason = plan_result_t::REASON_NO_MAP;
+    result.detail = "no LOCAL_MAP received yet";
+    answer(req, result, wallTimeUs() - t0);
+    return;
+  }
+  last_ = planner_.plan(receiver_.grid(), startStateOf(req), toVec3(req.target));
+  const int64_t compute_us = wallTimeUs() - t0;
+  const som::PlanTimings& t = last_.timings;
+  char split[200];
+  std::snprintf(split, sizeof(split),
+                "A* %.2f ms, corridor %.2f ms (%d polytopes), optimisation %.2f ms (%d evals), "
+                "verification %.2f ms",
+                t.astar_us * 1e-3, t.corridor_us * 1e-3,
+                static_cast<int>(last_.corridor.polytopes.size()), t.optimize_us * 1e-3,
+                last_.optimizer_evaluations, t.verify_us * 1e-3);
+  result.status = last_.ok() ? plan_result_t::STATUS_OK : plan_result_t::STATUS_FAILED;
+  result.reason = reasonCode(last_.status);
+  result.detail = last_.ok() ? std::string(split)
+                             : std::string(som::toString(last_.status)) + ": " + last_.detail +
+                                   " [" + split + "]";
+  result.cost_total = last_.cost_total;
+  result.cost_control = last_.cost_control;
+  result.cost_time = last_.cost_time;
+  result.cost_penalty = last_.cost_penalty;
+  if (last_.ok()) toMsg(last_.trajectory, result.trajectory);
+  ctx_.increment("astar_us_total", static_cast<int64_t>(t.astar_us));
+  ctx_.increment("corridor_us_total", static_cast<int64_t>(t.corridor_us));
+  ctx_.increment("optimize_us_total", static_cast<int64_t>(t.optimize_us));
+  ctx_.increment("verify_us_total", static_cast<int64_t>(t.verify_us));
+  answer(req, result, compute_us);
+}
+
+void SomNode::answer(const plan_request_t& req, plan_result_t& result, int64_t compute_us) {
+  result.header.utime = ctx_.clock().now();
+  result.request_id = req.request_id;
+  result.mode = plan_request_t::MODE_SOM;
+  result.compute_us = compute_us;
+  result.map_seq = receiver_.hasMap() ? receiver_.mapSeq() : 0;
+  result.narrow = false;
+  result.trajectory.trajectory_id = result.status == plan_result_t::STATUS_OK ? req.request_id : 0;
+  result.trajectory.start_utime = req.start_utime;
+  result.trajectory.source_mode = plan_request_t::MODE_SOM;
+  result.trajectory.header.utime = result.header.utime;
+  result.trajectory.header.source = ctx_.service();
+  if (result.status == plan_result_t::STATUS_OK) {
+    ctx_.increment("plans_ok");
+  } else {
+    ctx_.increment("plans_failed");
+    logInfo("request " + std::to_string(req.request_id) + " failed: " + result.detail);
+  }
+  ctx_.publish(channels::kPlanResult, result);
+}
+
+}  // namespace mmh

@@ -1,0 +1,159 @@
+#include "mmh/som/planner.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include "mmh/common/collision_check.hpp"
+
+namespace mmh::som {
+
+const char* toString(PlanStatus status) {
+  switch (status) {
+    case PlanStatus::kOk:
+      return "ok";
+    case PlanStatus::kBadInput:
+      return "bad input";
+    case PlanStatus::kNoMap:
+      return "no map";
+    case PlanStatus::kStartInObstacle:
+      return "start in obstacle";
+    case PlanStatus::kTargetInObstacle:
+      return "target in obstacle";
+    case PlanStatus::kTargetOutOfBounds:
+      return "target out of bounds";
+    case PlanStatus::kInfeasibleStart:
+      return "infeasible start";
+    case PlanStatus::kNoPath:
+      return "no path";
+    case PlanStatus::kCorridor:
+      return "corridor";
+    case PlanStatus::kOptimizer:
+      return "optimizer";
+    case PlanStatus::kVerify:
+      return "verification";
+  }
+  return "?";
+}
+
+double restToRestTimeBound(double length_m, double max_vel_mps, double max_acc_mps2) {
+  if (length_m >= max_vel_mps * max_vel_mps / max_acc_mps2)
+    return length_m / max_vel_mps + max_vel_mps / max_acc_mps2;
+  return 2.0 * std::sqrt(length_m / max_acc_mps2);
+}
+
+Planner::Planner(const SomParams& params)
+    : params_(params), optimizer_(params.optimizer, params.max_vel_mps, params.max_acc_mps2) {}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double microsSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
+}
+bool inBox(const Eigen::Vector3d& p, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+  return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
+}
+
+}  // namespace
+
+PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
+                         const Eigen::Vector3d& target) {
+  const Clock::time_point t_start = Clock::now();
+  PlanOutput out;
+  auto finish = [&](PlanStatus status, const std::string& detail) -> PlanOutput& {
+    out.status = status;
+    out.detail = detail;
+    if (status != PlanStatus::kOk) out.trajectory = Trajectory();
+    out.timings.total_us = microsSince(t_start);
+    return out;
+  };
+  const SomParams& p = params_;
+
+  // --- checks -----------------------------------------------------------------------------
+  if (!start.position.allFinite() || !start.velocity.allFinite() ||
+      !start.acceleration.allFinite() || !target.allFinite())
+    return finish(PlanStatus::kBadInput, "start state or target is not finite");
+  if (!grid.valid()) return finish(PlanStatus::kNoMap, "no map");
+  const Eigen::Vector3d bound_lo = p.geofence_min.cwiseMax(grid.minCorner());
+  const Eigen::Vector3d bound_hi = p.geofence_max.cwiseMin(grid.maxCorner());
+  if (!grid.containsPoint(start.position) || !inBox(start.position, bound_lo, bound_hi))
+    return finish(PlanStatus::kBadInput, "start outside the geofence or the map window");
+  if (!grid.containsPoint(target) || !inBox(target, bound_lo, bound_hi))
+    return finish(PlanStatus::kTargetOutOfBounds, "target outside the geofence or the map window");
+  const double tol = 1.0 + p.verify.limit_tolerance;
+  if (start.velocity.norm() > p.max_vel_mps * tol ||
+      start.acceleration.norm() > p.max_acc_mps2 * tol)
+    return finish(PlanStatus::kInfeasibleStart, "start speed or acceleration above the limits");
+  if (grid.isOccupiedPoint(start.position))
+    return finish(PlanStatus::kStartInObstacle, "start lies in an occupied voxel");
+  if (grid.isBlockedPoint(target))
+    return finish(PlanStatus::kTargetInObstacle, "target lies inside the inflated obstacles");
+  out.timings.checks_us = microsSince(t_start);
+
+  // --- A* ---------------------------------------------------------------------------------
+  Clock::time_point t0 = Clock::now();
+  AStarOptions astar_options;
+  astar_options.max_expansions = p.astar_max_expansions;
+  astar_options.unknown_is_free = true;
+  astar_options.heuristic_weight = p.astar_heuristic_weight;
+  astar_options.min_bound = bound_lo;
+  astar_options.max_bound = bound_hi;
+  const bool start_in_margin = grid.isBlockedPoint(start.position);
+  astar_options.start_escape_radius_m = start_in_margin ? p.start_escape_radius_m : 0.0;
+  const AStarResult found = astar_.search(grid, start.position, target, astar_options);
+  out.astar_expansions = found.expansions;
+  if (found.ok()) out.path = shortenPath(grid, found.path);
+  out.timings.astar_us = microsSince(t0);
+  switch (found.status) {
+    case AStarResult::Status::kFound:
+      break;
+    case AStarResult::Status::kStartBlocked:
+      return finish(PlanStatus::kStartInObstacle, "start is blocked and cannot escape");
+    case AStarResult::Status::kGoalBlocked:
+      return finish(PlanStatus::kTargetInObstacle, "target is blocked");
+    case AStarResult::Status::kOutOfWindow:
+      return finish(PlanStatus::kBadInput, "start or target outside the map window");
+    case AStarResult::Status::kNoPath:
+    case AStarResult::Status::kBudgetExceeded:
+      return finish(PlanStatus::kNoPath, std::string("A*: ") + toString(found.status));
+  }
+
+  // --- corridor ---------------------------------------------------------------------------
+  t0 = Clock::now();
+  EscapeZone escape;
+  if (start_in_margin) {
+    escape.center = start.position;
+    escape.radius = p.start_escape_radius_m;
+  }
+  std::string why;
+  const bool corridor_ok = corridor_builder_.build(grid, out.path, bound_lo, bound_hi, escape,
+                                                   p.corridor, &out.corridor, &why);
+  out.timings.corridor_us = microsSince(t0);
+  if (!corridor_ok) return finish(PlanStatus::kCorridor, why);
+
+  // --- optimisation -----------------------------------------------------------------------
+  t0 = Clock::now();
+  OptimizerOutput opt;
+  const bool opt_ok = optimizer_.setup(start, target, out.corridor) && optimizer_.optimize(&opt);
+  out.timings.optimize_us = microsSince(t0);
+  out.optimizer_evaluations = opt.evaluations;
+  out.cost_total = opt.cost_total;
+  out.cost_control = opt.cost_control;
+  out.cost_time = opt.cost_time;
+  out.cost_penalty = opt.cost_penalty;
+  if (!opt_ok)
+    return finish(PlanStatus::kOptimizer,
+                  opt.message.empty() ? std::string("optimizer failed") : opt.message);
+  out.trajectory = std::move(opt.trajectory);
+  out.piece_polytope = std::move(opt.piece_polytope);
+
+  // --- verification -----------------------------------------------------------------------
+  t0 = Clock::now();
+  out.verify = verifyTrajectory(out.trajectory, start, target, grid, out.corridor,
+                                out.piece_polytope, p.max_vel_mps, p.max_acc_mps2, p.verify);
+  out.timings.verify_us = microsSince(t0);
+  if (!out.verify.ok) return finish(PlanStatus::kVerify, out.verify.failure);
+  return finish(PlanStatus::kOk, "");
+}
+
+}  // namespace mmh::som

@@ -1,0 +1,134 @@
+#include "mmh/som/polytope_inflation.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mmh::som {
+
+namespace {
+// Room kept on both sides of a face, relative, in the ellipsoid's unit-ball coordinates.
+constexpr double kSeedMargin = 1e-3;
+}  // namespace
+
+bool separatingPlane(const Eigen::Vector3d& x, const Eigen::Vector3d& ua, const Eigen::Vector3d& ub,
+                     Eigen::Vector3d* y, double seed_margin) {
+  // The optimum is the minimum-norm point of the affine set of one of the active sets {},
+  // {a}, {b}, {a, b}; every candidate has |y| >= the optimum, so the smallest feasible wins.
+  const double xx = x.squaredNorm();
+  if (!(xx > 0.0)) return false;
+  const double tol = 1e-9, side = 1.0 - seed_margin;
+  double best = std::numeric_limits<double>::infinity();
+  auto consider = [&](const Eigen::Vector3d& cand) {
+    if (!cand.allFinite()) return;
+    if (cand.dot(ua) > side + tol || cand.dot(ub) > side + tol) return;
+    const double n = cand.squaredNorm();
+    if (n < best) {
+      best = n;
+      *y = cand;
+    }
+  };
+  consider(x / xx);
+  for (const Eigen::Vector3d* v : {&ua, &ub}) {
+    // min |y| with y . x = 1, y . v = side: y = G^T (G G^T)^-1 (1, side).
+    const double xv = x.dot(*v), vv = v->squaredNorm();
+    const double det = xx * vv - xv * xv;
+    if (det <= 1e-12 * xx * vv) continue;
+    const double l0 = (vv - xv * side) / det, l1 = (xx * side - xv) / det;
+    consider(l0 * x + l1 * *v);
+  }
+  Eigen::Matrix3d g;
+  g.row(0) = x.transpose();
+  g.row(1) = ua.transpose();
+  g.row(2) = ub.transpose();
+  const double det = g.determinant();
+  const double scale = std::sqrt(xx * ua.squaredNorm() * ub.squaredNorm());
+  if (std::abs(det) > 1e-10 * scale) consider(g.inverse() * Eigen::Vector3d(1.0, side, side));
+  return std::isfinite(best);
+}
+
+bool PolytopeInflator::exclude(const std::vector<Eigen::Vector3d>& points, const Ellipsoid& metric,
+                               const Eigen::Vector3d& a, const Eigen::Vector3d& b, double offset,
+                               Polytope* poly) {
+  const Eigen::Matrix3d cinv = metric.shape.inverse();
+  const Eigen::Vector3d& d = metric.center;
+  const Eigen::Vector3d ua = cinv * (a - d), ub = cinv * (b - d);
+  const int n = static_cast<int>(points.size());
+  dist2_.resize(n);
+  alive_.resize(n);
+  for (int j = 0; j < n; ++j) {
+    dist2_[j] = (cinv * (points[j] - d)).squaredNorm();
+    alive_[j] = j;
+  }
+  int count = n;
+  while (count > 0) {
+    int best = 0;
+    for (int i = 1; i < count; ++i)
+      if (dist2_[alive_[i]] < dist2_[alive_[best]]) best = i;
+    const Eigen::Vector3d& p = points[alive_[best]];
+    // Prefer a face with a little room on both sides (the seed strictly inside, the point
+    // strictly outside); a point very close to the seed leaves only the face through it.
+    const Eigen::Vector3d xp = cinv * (p - d);
+    Eigen::Vector3d y;
+    double level = 1.0 - 0.5 * kSeedMargin, shift = 0.0;
+    if (!separatingPlane(xp, ua, ub, &y, kSeedMargin)) {
+      if (!separatingPlane(xp, ua, ub, &y, 0.0)) return false;
+      level = 1.0;
+      shift = offset;
+    }
+    // {u : y . u <= level} with u = C^-1 (x - d) is {x : n . x <= level + n . d}, n = C^-1 y.
+    const Eigen::Vector3d normal = cinv * y;
+    const double norm = normal.norm();
+    const Eigen::Vector3d unit = normal / norm;
+    const double rhs = (level + normal.dot(d)) / norm - shift;
+    if (!poly->addHalfspace(unit, rhs)) return false;
+    int kept = 0;
+    for (int i = 0; i < count; ++i) {
+      const int j = alive_[i];
+      if (unit.dot(points[j]) < rhs) alive_[kept++] = j;
+    }
+    if (kept >= count) return false;  // cannot happen: the chosen point is cut (guard)
+    count = kept;
+  }
+  return true;
+}
+
+bool PolytopeInflator::inflate(const std::vector<Eigen::Vector3d>& points,
+                               const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                               const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                               const InflationOptions& options, Polytope* poly,
+                               Ellipsoid* ellipsoid) {
+  // First metric: an ellipsoid stretched along the seed whose cross-section reaches the nearest
+  // obstacle point, so that the first faces come from the obstacles beside the seed.
+  const Eigen::Vector3d ab = b - a;
+  const double len = ab.norm();
+  double nearest2 = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& p : points) {
+    const double t = len > 0.0 ? std::clamp((p - a).dot(ab) / (len * len), 0.0, 1.0) : 0.0;
+    nearest2 = std::min(nearest2, (a + t * ab - p).squaredNorm());
+  }
+  const double r = std::clamp(std::sqrt(nearest2), 0.05, 1.0);
+  Ellipsoid metric;
+  metric.center = 0.5 * (a + b);
+  metric.shape = r * Eigen::Matrix3d::Identity();
+  if (len > 0.0) {
+    const Eigen::Vector3d e = ab / len;
+    metric.shape += (std::max(0.5 * len, r) - r) * e * e.transpose();
+  }
+  for (int round = 0; round < options.iterations; ++round) {
+    Polytope candidate;
+    candidate.addBox(lo, hi);
+    if (!exclude(points, metric, a, b, options.plane_offset_m, &candidate)) return false;
+    *poly = std::move(candidate);
+    *ellipsoid = metric;
+    if (round + 1 == options.iterations) break;
+    Ellipsoid next;
+    if (!inscribedEllipsoid(*poly, metric, &next, options.ellipsoid)) break;
+    if (round > 0 && next.volume() <= metric.volume() * (1.0 + 1e-3)) break;  // converged
+    metric = next;
+  }
+  return true;
+}
+
+}  // namespace mmh::som

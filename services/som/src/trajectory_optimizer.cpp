@@ -1,0 +1,319 @@
+#include "mmh/som/trajectory_optimizer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <nlopt.hpp>
+
+#include "mmh/common/minco_penalty.hpp"
+#include "mmh/common/time_map.hpp"
+
+namespace mmh::som {
+
+double smoothedL1(double x, double mu, double* grad) {
+  if (x <= 0.0) {
+    *grad = 0.0;
+    return 0.0;
+  }
+  if (x < mu) {
+    const double r = x / mu, r2 = r * r;
+    *grad = r2 * (3.0 - 2.0 * r);
+    return (mu - 0.5 * x) * r2 * r;
+  }
+  *grad = 1.0;
+  return x - 0.5 * mu;
+}
+
+namespace {
+
+// Time at arc length s of a 1-D rest-to-rest style profile over length L: start speed v0,
+// accelerate at a up to vm, cruise, brake at a to rest at L (the initial time allocation).
+class SpeedProfile {
+ public:
+  SpeedProfile(double length, double v0, double vm, double a) : l_(length), a_(a) {
+    v0_ = std::clamp(v0, 0.0, vm);
+    if (v0_ * v0_ / (2.0 * a) >= l_) {  // cannot stop in time: brake harder, all the way
+      brake_only_ = true;
+      a_brake_ = l_ > 0.0 ? v0_ * v0_ / (2.0 * l_) : a;
+      return;
+    }
+    vp_ = std::min(vm, std::sqrt(a * l_ + 0.5 * v0_ * v0_));
+    s_acc_ = (vp_ * vp_ - v0_ * v0_) / (2.0 * a);
+    s_dec_ = vp_ * vp_ / (2.0 * a);
+    t_acc_ = (vp_ - v0_) / a;
+    total_ = t_acc_ + std::max(0.0, l_ - s_acc_ - s_dec_) / vp_ + vp_ / a;
+  }
+
+  double timeAt(double s) const {
+    s = std::clamp(s, 0.0, l_);
+    if (brake_only_) {
+      if (a_brake_ <= 0.0 || v0_ <= 0.0) return 0.0;
+      return (v0_ - std::sqrt(std::max(0.0, v0_ * v0_ - 2.0 * a_brake_ * s))) / a_brake_;
+    }
+    if (s <= s_acc_) return (-v0_ + std::sqrt(v0_ * v0_ + 2.0 * a_ * s)) / a_;
+    if (s <= l_ - s_dec_) return t_acc_ + (s - s_acc_) / vp_;
+    return total_ - std::sqrt(2.0 * (l_ - s) / a_);
+  }
+
+ private:
+  double l_, a_, v0_ = 0.0, vp_ = 1.0, s_acc_ = 0.0, s_dec_ = 0.0, t_acc_ = 0.0, total_ = 0.0;
+  bool brake_only_ = false;
+  double a_brake_ = 0.0;
+};
+
+}  // namespace
+
+TrajectoryOptimizer::TrajectoryOptimizer(const OptimizerParams& params, double max_vel_mps,
+                                         double max_acc_mps2)
+    : params_(params), max_vel_(max_vel_mps), max_acc_(max_acc_mps2) {}
+
+bool TrajectoryOptimizer::setup(const KinematicState& start, const Eigen::Vector3d& target,
+                                const Corridor& corridor) {
+  const int n = static_cast<int>(corridor.polytopes.size());
+  if (n == 0 || static_cast<int>(corridor.junctions.size()) != n - 1) return false;
+  corridor_ = &corridor;
+  // Polyline start -> junctions -> target; segment j lies in polytope j (both ends are in it).
+  std::vector<Eigen::Vector3d> nodes{start.position};
+  nodes.insert(nodes.end(), corridor.junctions.begin(), corridor.junctions.end());
+  nodes.push_back(target);
+  std::vector<Eigen::Vector3d> waypoints{start.position};
+  piece_polytope_.clear();
+  for (int j = 0; j < n; ++j) {
+    const double len = (nodes[j + 1] - nodes[j]).norm();
+    const int k = std::max(1, static_cast<int>(std::ceil(len / params_.piece_length_m - 1e-9)));
+    for (int i = 1; i <= k; ++i) {
+      waypoints.push_back(nodes[j] + (nodes[j + 1] - nodes[j]) * (static_cast<double>(i) / k));
+      piece_polytope_.push_back(j);
+    }
+  }
+  pieces_ = static_cast<int>(piece_polytope_.size());
+
+  // Initial durations from a speed profile along the polyline.
+  std::vector<double> arc{0.0};
+  for (size_t i = 1; i < waypoints.size(); ++i)
+    arc.push_back(arc.back() + (waypoints[i] - waypoints[i - 1]).norm());
+  Eigen::Vector3d dir0 = waypoints[1] - waypoints[0];
+  dir0 = dir0.norm() > 1e-9 ? Eigen::Vector3d(dir0.normalized()) : Eigen::Vector3d::Zero();
+  const SpeedProfile profile(arc.back(), std::max(0.0, start.velocity.dot(dir0)), max_vel_,
+                             max_acc_);
+
+  head_.col(0) = start.position;
+  head_.col(1) = start.velocity;
+  head_.col(2) = start.acceleration;
+  tail_.setZero();
+  tail_.col(0) = target;
+  minco_.setConditions(head_, tail_, pieces_);
+
+  const int m = pieces_;
+  x0_.resize(3 * (m - 1) + m);
+  for (int i = 0; i < m - 1; ++i) x0_.segment<3>(3 * i) = waypoints[i + 1];
+  for (int i = 0; i < m; ++i) {
+    const double dt = profile.timeAt(arc[i + 1]) - profile.timeAt(arc[i]);
+    const double floor = std::max(0.05, (arc[i + 1] - arc[i]) / max_vel_);
+    x0_[3 * (m - 1) + i] = tauFromDuration(std::max(dt, floor));
+  }
+  points_.resize(3, m - 1);
+  durations_.resize(m);
+  grad_coeffs_.resize(6 * m, 3);
+  grad_durations_.resize(m);
+
+  return true;
+}
+
+double TrajectoryOptimizer::evaluate(const Eigen::VectorXd& x, Eigen::VectorXd* grad,
+                                     double* control, double* time, double* penalty) {
+  ++evaluations_;
+  const int m = pieces_;
+  points_ = Eigen::Map<const Eigen::Matrix3Xd>(x.data(), 3, m - 1);
+  for (int i = 0; i < m; ++i) durations_[i] = durationFromTau(x[3 * (m - 1) + i]);
+  minco_.setParameters(points_, durations_);
+  grad_coeffs_.setZero();
+  grad_durations_.setZero();
+  const double energy = minco_.energy();
+  minco_.addEnergyGradient(grad_coeffs_, grad_durations_);
+  const double rho = params_.time_weight;
+  const double time_cost = rho * durations_.sum();
+  grad_durations_.array() += rho;
+
+  const double mu = params_.penalty_smoothing;
+  const double wc = corridor_boost_ * params_.weight_corridor, wv = params_.weight_velocity,
+               wa = params_.weight_acceleration;
+  const double vl = max_vel_ * (1.0 - params_.limit_margin),
+               al = max_acc_ * (1.0 - params_.limit_margin);
+  const double v2 = vl * vl, a2 = al * al;
+  const double shrink = params_.corridor_margin_m;
+  const std::vector<Polytope>& polys = corridor_->polytopes;
+  auto pointwise = [&](const PenaltyPoint& pt, Eigen::Vector3d& gp, Eigen::Vector3d& gv,
+                       Eigen::Vector3d& ga) {
+    double value = 0.0, g = 0.0;
+    const Polytope::Matrix& h = polys[piece_polytope_[pt.piece]].halfspaces();
+    for (int j = 0; j < h.rows(); ++j) {
+      const double viol =
+          h(j, 0) * pt.pos.x() + h(j, 1) * pt.pos.y() + h(j, 2) * pt.pos.z() - h(j, 3) + shrink;
+      if (viol <= 0.0) continue;
+      value += wc * smoothedL1(viol, mu, &g);
+      gp += (wc * g) * Eigen::Vector3d(h(j, 0), h(j, 1), h(j, 2));
+    }
+    const double dv = pt.vel.squaredNorm() - v2;
+    if (dv > 0.0) {
+      value += wv * smoothedL1(dv, mu, &g);
+      gv += (2.0 * wv * g) * pt.vel;
+    }
+    const double da = pt.acc.squaredNorm() - a2;
+    if (da > 0.0) {
+      value += wa * smoothedL1(da, mu, &g);
+      ga += (2.0 * wa * g) * pt.acc;
+    }
+    return value;
+  };
+  const double pen =
+      integratePenalty(minco_, params_.samples_per_piece, pointwise, grad_coeffs_, grad_durations_);
+  if (grad) {
+    minco_.propagateGradient(grad_coeffs_, grad_durations_, grad_points_, grad_total_);
+    grad->resize(x.size());
+    Eigen::Map<Eigen::Matrix3Xd>(grad->data(), 3, m - 1) = grad_points_;
+    for (int i = 0; i < m; ++i)
+      (*grad)[3 * (m - 1) + i] = grad_total_[i] * durationGradient(x[3 * (m - 1) + i]);
+  }
+  if (control) *control = energy;
+  if (time) *time = time_cost;
+  if (penalty) *penalty = pen;
+  return energy + time_cost + pen;
+}
+
+double TrajectoryOptimizer::objective(const Eigen::VectorXd& x, Eigen::VectorXd* grad) {
+  return evaluate(x, grad, nullptr, nullptr, nullptr);
+}
+
+Trajectory TrajectoryOptimizer::trajectoryAt(const Eigen::VectorXd& x) {
+  evaluate(x, nullptr, nullptr, nullptr, nullptr);
+  return minco_.trajectory();
+}
+
+void TrajectoryOptimizer::costParts(const Eigen::VectorXd& x, double* control, double* time,
+                                    double* penalty) {
+  evaluate(x, nullptr, control, time, penalty);
+}
+
+namespace {
+struct NloptContext {
+  TrajectoryOptimizer* self;
+  Eigen::VectorXd x, g, best_x;
+  double best = std::numeric_limits<double>::infinity();
+  double scale = 1.0;
+  int calls = 0;
+};
+}  // namespace
+
+double TrajectoryOptimizer::nloptObjective(unsigned n, const double* x, double* grad, void* data) {
+  auto* ctx = static_cast<NloptContext*>(data);
+  ++ctx->calls;
+  ctx->x = Eigen::Map<const Eigen::VectorXd>(x, n);
+  const double f = ctx->self->evaluate(ctx->x, grad ? &ctx->g : nullptr, nullptr, nullptr, nullptr);
+  if (grad) Eigen::Map<Eigen::VectorXd>(grad, n) = ctx->g * ctx->scale;
+  if (std::isfinite(f) && f < ctx->best) {
+    ctx->best = f;
+    ctx->best_x = ctx->x;
+  }
+  return std::isfinite(f) ? f * ctx->scale : std::numeric_limits<double>::max();
+}
+
+double TrajectoryOptimizer::runNlopt(Eigen::VectorXd& x, int max_evaluations, int* result,
+                                     std::string* message) {
+  const unsigned n = static_cast<unsigned>(x.size());
+  NloptContext ctx{this, x, Eigen::VectorXd::Zero(n), x};
+  // NLopt's L-BFGS (Luksan) starts with a steepest-descent step as long as the gradient: scale
+  // the cost so that this first step is a sensible distance in the variables.
+  Eigen::VectorXd g0;
+  objective(x, &g0);
+  ctx.scale = params_.first_step / std::max(1e-12, g0.norm());
+  nlopt::opt opt(nlopt::LD_LBFGS, n);
+  opt.set_min_objective(&TrajectoryOptimizer::nloptObjective, &ctx);
+  opt.set_ftol_rel(params_.rel_cost_tolerance);
+  opt.set_maxeval(max_evaluations);
+  opt.set_vector_storage(params_.lbfgs_memory);
+  std::vector<double> xv(x.data(), x.data() + n);
+  double f = 0.0;
+  try {
+    *result = opt.optimize(xv, f);
+  } catch (const nlopt::roundoff_limited&) {
+    *result = nlopt::ROUNDOFF_LIMITED;  // the best point so far is still usable
+  } catch (const std::exception& e) {
+    *result = nlopt::FAILURE;
+    *message = std::string("nlopt: ") + e.what();
+  }
+  if (std::isfinite(ctx.best)) x = ctx.best_x;
+  return ctx.best;
+}
+
+double TrajectoryOptimizer::corridorViolation(const Eigen::VectorXd& x) {
+  evaluate(x, nullptr, nullptr, nullptr, nullptr);
+  const Eigen::MatrixX3d& c = minco_.coeffs();
+  const int samples = 2 * params_.samples_per_piece;
+  double worst = -std::numeric_limits<double>::infinity();
+  for (int i = 0; i < pieces_; ++i) {
+    const Polytope& poly = corridor_->polytopes[piece_polytope_[i]];
+    const Eigen::Matrix<double, 6, 3> ci = c.block<6, 3>(6 * i, 0);
+    for (int j = 0; j <= samples; ++j) {
+      const double t = durations_[i] * j / samples;
+      const Eigen::RowVector3d p =
+          ci.row(0) +
+          t * (ci.row(1) + t * (ci.row(2) + t * (ci.row(3) + t * (ci.row(4) + t * ci.row(5)))));
+      worst = std::max(worst, poly.maxViolation(p.transpose()));
+    }
+  }
+  return worst;
+}
+
+bool TrajectoryOptimizer::optimize(OptimizerOutput* out) {
+  *out = OptimizerOutput();
+  if (pieces_ == 0) {
+    out->message = "optimizer was not set up";
+    return false;
+  }
+  evaluations_ = 0;
+  corridor_boost_ = 1.0;
+  Eigen::VectorXd x = x0_;
+  double best = runNlopt(x, params_.max_evaluations, &out->nlopt_result, &out->message);
+  // Penalties are soft: if the result still leaves the polytopes, raise the corridor weight and
+  // continue from where it stopped.
+  for (int round = 0; round < params_.extra_rounds && std::isfinite(best); ++round) {
+    if (corridorViolation(x) <= 0.0) break;
+    corridor_boost_ *= 10.0;
+    best = runNlopt(x, params_.extra_round_evaluations, &out->nlopt_result, &out->message);
+    ++out->extra_rounds;
+  }
+  corridor_boost_ = 1.0;
+  if (!std::isfinite(best)) {
+    if (out->message.empty()) out->message = "no finite cost was reached";
+    return false;
+  }
+  out->evaluations = evaluations_;
+  out->cost_total = evaluate(x, nullptr, &out->cost_control, &out->cost_time, &out->cost_penalty);
+  Trajectory traj = minco_.trajectory();
+  // Limit repair: the penalties leave a small excess over v_max / a_max; stretch all durations
+  // (keeping the waypoints) until the exact maxima keep the limits. Stretching by k divides the
+  // speeds by about k and the accelerations by about k^2 (exactly for a start at rest).
+  const int m = pieces_;
+  points_ = Eigen::Map<const Eigen::Matrix3Xd>(x.data(), 3, m - 1);
+  for (int i = 0; i < m; ++i) durations_[i] = durationFromTau(x[3 * (m - 1) + i]);
+  for (int pass = 0; pass < 8; ++pass) {
+    const double rv = traj.maxSpeed() / max_vel_, ra = traj.maxAcceleration() / max_acc_;
+    if (std::max(rv, ra) <= 1.0 + params_.repair_tolerance) break;
+    const double k = std::max(rv, std::sqrt(ra));
+    durations_ *= std::max(k, 1.0 + 0.5 * params_.repair_tolerance);
+    minco_.setParameters(points_, durations_);
+    traj = minco_.trajectory();
+    ++out->repairs;
+  }
+  // The banded solve meets the start state to rounding; make it exact.
+  PieceCoeffs& c = traj.pieces().front().coeffs;
+  c.col(0) = head_.col(0);
+  c.col(1) = head_.col(1);
+  c.col(2) = 0.5 * head_.col(2);
+  out->trajectory = std::move(traj);
+  out->piece_polytope = piece_polytope_;
+  return true;
+}
+
+}  // namespace mmh::som

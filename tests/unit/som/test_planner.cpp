@@ -1,0 +1,191 @@
+// The whole SOM pipeline on hand-made worlds. Results are checked independently of the planner:
+// fine sampling against the raw grid (no sample in an occupied voxel) and against the corridor,
+// exact maxima of speed and acceleration, start and end states. Failure paths give their reason.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "mmh/som/planner.hpp"
+#include "som_test_worlds.hpp"
+
+using Eigen::Vector3d;
+using mmh::som::PlanStatus;
+
+namespace {
+
+mmh::som::SomParams testParams() {
+  mmh::som::SomParams p;  // defaults: v_max 3, a_max 2, geofence z in [0.3, 2.7]
+  return p;
+}
+
+void expectVerified(const som_test::World& w, const mmh::KinematicState& start,
+                    const mmh::som::PlanOutput& out) {
+  ASSERT_EQ(out.status, PlanStatus::kOk) << out.detail;
+  const mmh::Trajectory& t = out.trajectory;
+  const double v_max = 3.0, a_max = 2.0;
+  EXPECT_EQ(t.position(0), start.position);
+  EXPECT_EQ(t.velocity(0), start.velocity);
+  EXPECT_EQ(t.acceleration(0), start.acceleration);
+  EXPECT_LT((t.position(t.duration()) - w.target).norm(), 1e-3);
+  EXPECT_LT(t.velocity(t.duration()).norm(), 1e-3);
+  EXPECT_LT(t.acceleration(t.duration()).norm(), 1e-3);
+  EXPECT_LE(t.maxSpeed(), v_max * 1.01);
+  EXPECT_LE(t.maxAcceleration(), a_max * 1.01);
+  // 1 ms sampling (at most 3 mm apart at 3 m/s).
+  int outside = 0;
+  for (double s = 0.0; s <= t.duration(); s += 1e-3) {
+    const Vector3d p = t.position(s);
+    ASSERT_FALSE(w.grid->isOccupiedPoint(p)) << "occupied voxel at t = " << s;
+    double best = 1e9;
+    for (const auto& poly : out.corridor.polytopes) best = std::min(best, poly.maxViolation(p));
+    if (best > 0.02) ++outside;
+    EXPECT_GE(p.z(), 0.3 - 0.02);
+    EXPECT_LE(p.z(), 2.7 + 0.02);
+  }
+  EXPECT_EQ(outside, 0);
+  // Flight time is within reach of the rest-to-rest bound on the planned path.
+  const double bound = mmh::som::restToRestTimeBound(mmh::pathLength(out.path), v_max, a_max);
+  EXPECT_LT(t.duration(), 1.6 * bound);
+  EXPECT_GT(t.duration(),
+            0.8 * mmh::som::restToRestTimeBound((w.target - start.position).norm(), v_max, a_max));
+  EXPECT_GT(out.timings.total_us, 0.0);
+  EXPECT_GE(out.timings.total_us,
+            out.timings.astar_us + out.timings.corridor_us + out.timings.optimize_us);
+}
+
+mmh::KinematicState atRest(const Vector3d& p) {
+  mmh::KinematicState s;
+  s.position = p;
+  return s;
+}
+
+}  // namespace
+
+TEST(SomPlanner, Pillars) {
+  const auto w = som_test::pillars();
+  mmh::som::Planner planner(testParams());
+  const auto start = atRest(w.start);
+  expectVerified(w, start, planner.plan(*w.grid, start, w.target));
+}
+
+TEST(SomPlanner, WallWithGap) {
+  const auto w = som_test::wallWithGap();
+  mmh::som::Planner planner(testParams());
+  const auto start = atRest(w.start);
+  const auto out = planner.plan(*w.grid, start, w.target);
+  expectVerified(w, start, out);
+  // It went through the gap.
+  bool through_gap = false;
+  for (double s = 0.0; s <= out.trajectory.duration(); s += 0.01) {
+    const Vector3d p = out.trajectory.position(s);
+    if (std::abs(p.x() - 6.0) < 0.1) through_gap = through_gap || (p.y() > 1.0 && p.y() < 2.2);
+  }
+  EXPECT_TRUE(through_gap);
+}
+
+TEST(SomPlanner, SBend) {
+  const auto w = som_test::sBend();
+  mmh::som::Planner planner(testParams());
+  const auto start = atRest(w.start);
+  expectVerified(w, start, planner.plan(*w.grid, start, w.target));
+}
+
+TEST(SomPlanner, MovingStart) {
+  const auto w = som_test::pillars();
+  mmh::som::Planner planner(testParams());
+  mmh::KinematicState start = atRest(w.start);
+  start.velocity = Vector3d(2.5, -0.8, 0.1);
+  start.acceleration = Vector3d(0.5, 0.3, 0.0);
+  expectVerified(w, start, planner.plan(*w.grid, start, w.target));
+}
+
+TEST(SomPlanner, StartInsideTheInflatedMarginEscapes) {
+  const auto w = som_test::pillars();
+  mmh::som::Planner planner(testParams());
+  // 0.45 m from the axis of the pillar at (3, 0.2) (radius 0.3): blocked, not occupied.
+  som_test::World near = w;
+  near.start = Vector3d(3.0, 0.65, 1.2);
+  ASSERT_TRUE(w.grid->isBlockedPoint(near.start));
+  ASSERT_FALSE(w.grid->isOccupiedPoint(near.start));
+  const auto start = atRest(near.start);
+  expectVerified(near, start, planner.plan(*w.grid, start, w.target));
+}
+
+TEST(SomPlanner, TargetEnclosedGivesNoPath) {
+  const auto w = som_test::targetEnclosed();
+  mmh::som::Planner planner(testParams());
+  const auto out = planner.plan(*w.grid, atRest(w.start), w.target);
+  EXPECT_EQ(out.status, PlanStatus::kNoPath) << out.detail;
+  EXPECT_TRUE(out.trajectory.empty());
+}
+
+TEST(SomPlanner, StartInsideAnObstacle) {
+  const auto w = som_test::pillars();
+  mmh::som::Planner planner(testParams());
+  const auto out = planner.plan(*w.grid, atRest(Vector3d(3.0, 0.2, 1.2)), w.target);
+  EXPECT_EQ(out.status, PlanStatus::kStartInObstacle) << out.detail;
+  EXPECT_TRUE(out.trajectory.empty());
+}
+
+TEST(SomPlanner, TargetInsideTheInflatedObstacles) {
+  const auto w = som_test::pillars();
+  mmh::som::Planner planner(testParams());
+  const auto out = planner.plan(*w.grid, atRest(w.start), Vector3d(8.0, 0.45, 1.2));
+  EXPECT_EQ(out.status, PlanStatus::kTargetInObstacle) << out.detail;
+}
+
+TEST(SomPlanner, NaNInTheRequest) {
+  const auto w = som_test::pillars();
+  mmh::som::Planner planner(testParams());
+  mmh::KinematicState start = atRest(w.start);
+  start.position.x() = std::nan("");
+  EXPECT_EQ(planner.plan(*w.grid, start, w.target).status, PlanStatus::kBadInput);
+  start = atRest(w.start);
+  start.velocity.y() = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(planner.plan(*w.grid, start, w.target).status, PlanStatus::kBadInput);
+  EXPECT_EQ(planner.plan(*w.grid, atRest(w.start), Vector3d(std::nan(""), 0, 1)).status,
+            PlanStatus::kBadInput);
+}
+
+TEST(SomPlanner, OtherRefusals) {
+  const auto w = som_test::pillars();
+  mmh::som::Planner planner(testParams());
+  // Target above the geofence band, or outside the window.
+  EXPECT_EQ(planner.plan(*w.grid, atRest(w.start), Vector3d(12, 0, 2.9)).status,
+            PlanStatus::kTargetOutOfBounds);
+  EXPECT_EQ(planner.plan(*w.grid, atRest(w.start), Vector3d(20, 0, 1.2)).status,
+            PlanStatus::kTargetOutOfBounds);
+  // Start outside the window.
+  EXPECT_EQ(planner.plan(*w.grid, atRest(Vector3d(-5, 0, 1.2)), w.target).status,
+            PlanStatus::kBadInput);
+  // Start faster than v_max.
+  mmh::KinematicState fast = atRest(w.start);
+  fast.velocity = Vector3d(3.5, 0, 0);
+  EXPECT_EQ(planner.plan(*w.grid, fast, w.target).status, PlanStatus::kInfeasibleStart);
+  // No map.
+  EXPECT_EQ(planner.plan(mmh::VoxelGrid(), atRest(w.start), w.target).status, PlanStatus::kNoMap);
+}
+
+TEST(SomPlanner, ParamsFromConfig) {
+  const auto config = mmh::Config::fromString(R"(
+vehicle: {radius_m: 0.15, max_vel_mps: 2.5, max_acc_mps2: 1.5}
+geofence: {min_m: [-10, -10, 0.5], max_m: [10, 10, 2.5]}
+som: {time_weight: 500.0, samples_per_piece: 6, corridor_iterations: 3}
+)");
+  const auto p = mmh::som::loadSomParams(config);
+  EXPECT_EQ(p.max_vel_mps, 2.5);
+  EXPECT_EQ(p.max_acc_mps2, 1.5);
+  EXPECT_EQ(p.geofence_min, Vector3d(-10, -10, 0.5));
+  EXPECT_EQ(p.optimizer.time_weight, 500.0);
+  EXPECT_EQ(p.optimizer.samples_per_piece, 6);
+  EXPECT_EQ(p.corridor.iterations, 3);
+  EXPECT_EQ(p.optimizer.max_evaluations, mmh::som::OptimizerParams().max_evaluations);
+  EXPECT_THROW(mmh::som::loadSomParams(mmh::Config::fromString(R"(
+vehicle: {max_vel_mps: 3.0, max_acc_mps2: 2.0}
+geofence: {min_m: [-10, -10, 0.5], max_m: [10, 10, 2.5]}
+som: {samples_per_piece: 1000})")),
+               mmh::ConfigError);
+  // The deployment file loads.
+  EXPECT_NO_THROW(mmh::som::loadSomParams(
+      mmh::Config::loadFile(std::string(MMH_SOURCE_DIR) + "/deploy/config/default.yaml")));
+}
