@@ -133,7 +133,8 @@ AStarResult GridAStar::search(const VoxelGrid& grid, const Eigen::Vector3d& star
           if (!in_bounds(nb)) continue;
           const int64_t ni = grid.linearIndex(nb);
           if (closed(ni) || !traversable(nb, ni)) continue;
-          const float step = static_cast<float>(std::sqrt(double(dx * dx + dy * dy + dz * dz)));
+          float step = static_cast<float>(std::sqrt(double(dx * dx + dy * dy + dz * dz)));
+          if (options.extra_step_cost) step += static_cast<float>(options.extra_step_cost(nb, ni));
           const float ng = gc + step;
           if (seen(ni) && g_cost_[ni] <= ng) continue;
           stamp_[ni] = generation_;

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,9 @@ struct AStarOptions {
   // Weighted A*: the heuristic is multiplied by this (>= 1). Above 1 the search expands far
   // fewer cells and the path may be longer by at most this factor.
   double heuristic_weight = 1.0;
+  // Optional extra cost (in cells, >= 0) of entering a cell (local index, linear index), e.g. to
+  // keep the path away from obstacles. The heuristic stays admissible.
+  std::function<double(const Eigen::Vector3i&, int64_t)> extra_step_cost;
 };
 
 struct AStarResult {
