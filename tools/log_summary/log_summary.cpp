@@ -48,6 +48,8 @@ bool decode(const lcm::LogEvent& e, Msg& msg) {
 
 const char* modeName(int mode) {
   switch (mode) {
+    case 0:
+      return "-";
     case plan_request_t::MODE_FPM:
       return "FPM";
     case plan_request_t::MODE_SOM:
@@ -181,6 +183,9 @@ LogSummary summarizeLog(const std::string& path) {
         continue;
       }
       ++v.outcomes[m.outcome];
+      v.decisions.push_back({(e->timestamp - s.first_us) * 1e-6, m.trigger, m.outcome,
+                             m.committed_mode, m.awareness_safe, m.position[0], m.position[1],
+                             m.detail});
       if (m.outcome == arbiter_status_t::OUTCOME_COMMITTED ||
           m.outcome == arbiter_status_t::OUTCOME_STOPPING)
         ++v.commits[m.committed_mode];
@@ -251,6 +256,21 @@ void printSummary(const LogSummary& s, std::ostream& out) {
       out << "mission: " << (v.reached ? "reached" : "not reached")
           << (v.collided ? ", COLLIDED" : "") << ", flight time " << v.flight_time_s
           << " s, distance " << v.distance_m << " m, energy " << v.energy << " m^2/s^5\n";
+    }
+  }
+}
+
+void printDecisions(const LogSummary& s, std::ostream& out) {
+  static const char* triggers[] = {"none", "initial", "halfway", "collision",
+                                   "goal", "retry",   "fixed",   "deadline"};
+  out << std::fixed << std::setprecision(2);
+  for (const auto& [prefix, v] : s.vehicles) {
+    for (const DecisionLine& d : v.decisions) {
+      out << prefix << std::setw(8) << d.t_s << " s  (" << std::setw(6) << d.x << ", "
+          << std::setw(6) << d.y << ")  S=" << (d.safe ? "1" : "0") << "  "
+          << (d.trigger >= 0 && d.trigger <= 7 ? triggers[d.trigger] : "?") << " -> "
+          << outcomeName(d.outcome) << " " << modeName(d.committed_mode) << "  " << d.detail
+          << "\n";
     }
   }
 }

@@ -31,6 +31,14 @@ struct ModeStats {
   std::map<int, int64_t> failure_reasons;
 };
 
+struct DecisionLine {  // one ARBITER_STATUS, for --decisions
+  double t_s = 0;      // log time since the first event
+  int trigger = 0, outcome = 0, committed_mode = 0;
+  bool safe = true;
+  double x = 0, y = 0;
+  std::string detail;
+};
+
 struct VehicleSummary {                          // one channel prefix
   std::map<std::string, ChannelStats> channels;  // base channel name (prefix removed)
   std::map<int, ModeStats> modes;                // plan_request_t.MODE_*
@@ -40,6 +48,7 @@ struct VehicleSummary {                          // one channel prefix
   double map_delta_bytes_mean = 0;
   std::map<int, int64_t> outcomes;  // arbiter_status_t.OUTCOME_* -> count
   std::map<int, int64_t> commits;   // committed mode -> count
+  std::vector<DecisionLine> decisions;
   bool mission_seen = false, reached = false, collided = false;
   double flight_time_s = 0, distance_m = 0, energy = 0;
 };
@@ -54,5 +63,7 @@ struct LogSummary {
 // Throws std::runtime_error when the file cannot be read.
 LogSummary summarizeLog(const std::string& path);
 void printSummary(const LogSummary& summary, std::ostream& out);
+// Every arbiter decision, one per line.
+void printDecisions(const LogSummary& summary, std::ostream& out);
 
 }  // namespace mmh

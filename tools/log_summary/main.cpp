@@ -9,6 +9,8 @@ int main(int argc, char** argv) {
   mmh::ArgParser parser("mmh-log-summary",
                         "Channels and rates, planning iterations per mode, request-to-result "
                         "latency percentiles and LOCAL_MAP sequence gaps of an LCM log.");
+  bool decisions = false;
+  parser.addFlag("--decisions", &decisions, "also list every arbiter decision");
   parser.addPositional("LOG...", &logs, "LCM log files");
   int code = 0;
   if (!parser.parse(argc, argv, &code)) return code;
@@ -19,7 +21,9 @@ int main(int argc, char** argv) {
   int status = 0;
   for (const std::string& path : logs) {
     try {
-      mmh::printSummary(mmh::summarizeLog(path), std::cout);
+      const mmh::LogSummary summary = mmh::summarizeLog(path);
+      mmh::printSummary(summary, std::cout);
+      if (decisions) mmh::printDecisions(summary, std::cout);
     } catch (const std::exception& e) {
       std::cerr << "mmh-log-summary: " << e.what() << "\n";
       status = 1;

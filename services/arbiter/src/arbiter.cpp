@@ -74,7 +74,7 @@ void Arbiter::onMapUpdated(const VoxelGrid& grid, int64_t map_seq, int64_t map_u
   now_ = std::max(now_, now);
   if (stopped_for_stale_map_ && !mapStale(now_)) stopped_for_stale_map_ = false;
   // Rule (2): a newly mapped obstacle on the rest of the committed trajectory.
-  if (hasCommitted() && !pending_ && !reached_ && collisionAhead(now_)) collision_detected_ = true;
+  if (hasCommitted() && !pending_ && !reached_ && collisionThreat(now_)) collision_detected_ = true;
   evaluate(now_);
 }
 
@@ -117,6 +117,21 @@ bool Arbiter::collisionAhead(int64_t now) const {
   if (!grid_ || !hasCommitted()) return false;
   const double t0 = std::max(0.0, (now - committed_start_) * kUs);
   return firstCollisionTime(*grid_, committed_, t0, committed_.duration()).has_value();
+}
+
+bool Arbiter::collisionThreat(int64_t now) const {
+  if (!grid_ || !hasCommitted()) return false;
+  const double elapsed = std::max(0.0, (now - committed_start_) * kUs);
+  const auto hit = firstCollisionTime(*grid_, committed_, elapsed, committed_.duration());
+  if (!hit) return false;
+  // The halfway replan plans with this map before the vehicle gets there: leave it to it.
+  const bool halfway_replan_pending = usesLazyRules(params_.policy) && !committed_ends_at_goal_ &&
+                                      elapsed < 0.5 * committed_.duration();
+  if (params_.defer_far_collisions && halfway_replan_pending &&
+      *hit > 0.5 * committed_.duration() + params_.collision_margin_s) {
+    return false;
+  }
+  return true;
 }
 
 Trigger Arbiter::nextTrigger(int64_t now) const {
@@ -203,6 +218,7 @@ void Arbiter::evaluate(int64_t now) {
 }
 
 void Arbiter::startPlanning(Trigger trigger, const std::vector<Mode>& modes, int64_t now) {
+  if (trigger != Trigger::kRetry) tried_modes_ = 0;  // a new episode of attempts
   Pending p;
   p.trigger = trigger;
   p.start_utime = now + static_cast<int64_t>(params_.replan_lead_s * 1e6);
@@ -221,7 +237,7 @@ void Arbiter::startPlanning(Trigger trigger, const std::vector<Mode>& modes, int
   } else {
     const LocalTarget lt =
         chooseLocalTarget(grid_, p.start.position, *goal_, params_.horizonDistance(),
-                          params_.geofence_min_m, params_.geofence_max_m);
+                          params_.geofence_min_m, params_.geofence_max_m, params_.inflation_m);
     p.target = lt.position;
     p.target_is_goal = lt.is_goal;
   }
@@ -307,8 +323,14 @@ void Arbiter::commit(const Trajectory& trajectory, int64_t start_utime, Mode mod
 void Arbiter::commitStop(int64_t now, const std::string& why, Trigger trigger) {
   const int64_t start = now + static_cast<int64_t>(params_.replan_lead_s * 1e6);
   const Trajectory stop =
-      makeStoppingTrajectory(stateAt(start), params_.max_acc_mps2, params_.max_vel_mps);
+      hasCommitted()
+          ? makeStoppingTrajectory(committed_, (start - committed_start_) * kUs,
+                                   params_.max_acc_mps2, params_.max_vel_mps)
+          : makeStoppingTrajectory(stateAt(start), params_.max_acc_mps2, params_.max_vel_mps);
   commit(stop, start, Mode::kStop, false);
+  // Braking is not a plan: keep trying the modes, from the next map on.
+  last_failed_ = true;
+  map_seq_at_failure_ = map_seq_;
   ++counters_.stops;
   DecisionOut d;
   d.trigger = trigger;

@@ -56,6 +56,8 @@ ArbiterParams loadArbiterParams(const Config& config) {
                       ": key 'arbiter.check_inflation_m' must not exceed map.inflation_m");
   }
   p.answer_speed_tolerance = config.getDouble("arbiter.answer_limit_tolerance", 0.0, 0.5);
+  p.defer_far_collisions = config.getBool("arbiter.defer_far_collisions");
+  p.collision_margin_s = config.getDouble("arbiter.collision_margin_s", 0.0, 30.0);
   p.narrow_probe_dist_m = config.getDouble("awareness.narrow_probe_dist_m", 0.05, 10.0);
   p.geofence_min_m = config.getVector3("geofence.min_m", -1e5, 1e5);
   p.geofence_max_m = config.getVector3("geofence.max_m", -1e5, 1e5);

@@ -45,4 +45,41 @@ Trajectory makeStoppingTrajectory(const KinematicState& start, double max_acc_mp
   }
 }
 
+Trajectory makeStoppingTrajectory(const Trajectory& path, double t0, double max_acc_mps2,
+                                  double max_vel_mps) {
+  const KinematicState start = path.state(t0);
+  const double speed = start.velocity.norm();
+  const double remaining = path.duration() - t0;
+  if (speed < 1e-3 || remaining <= 1e-3)
+    return makeStoppingTrajectory(start, max_acc_mps2, max_vel_mps);
+  const double speed_limit = std::max(max_vel_mps, speed);
+  // Time warp tau(t) with tau' = 1 - 3 u^2 + 2 u^3 (u = t / T): tau'' = 0 at both ends, so the
+  // acceleration is continuous at the start and zero at rest; the curve is followed up to
+  // tau(T) = T / 2. Peak path deceleration is 1.5 speed / T.
+  for (double total = std::max(0.3, 1.5 * speed / (0.9 * max_acc_mps2));; total *= 1.1) {
+    if (0.5 * total > remaining) {
+      // Not enough path left to brake on: the straight stop from the same state.
+      return makeStoppingTrajectory(start, max_acc_mps2, max_vel_mps);
+    }
+    auto warp = [&](double t) {
+      const double u = t / total;
+      return t0 + total * (u - u * u * u + 0.5 * u * u * u * u);
+    };
+    const int pieces = std::max(3, static_cast<int>(std::ceil(total / 0.15)));
+    MincoJerk minco;
+    Eigen::Matrix3d head, tail;
+    head << start.position, start.velocity, start.acceleration;
+    tail << path.position(warp(total)), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero();
+    minco.setConditions(head, tail, pieces);
+    Eigen::Matrix3Xd inner(3, pieces - 1);
+    for (int i = 1; i < pieces; ++i) inner.col(i - 1) = path.position(warp(total * i / pieces));
+    minco.setParameters(inner, Eigen::VectorXd::Constant(pieces, total / pieces));
+    Trajectory stop = minco.trajectory();
+    if ((stop.maxAcceleration() <= max_acc_mps2 && stop.maxSpeed() <= speed_limit * 1.0001) ||
+        total > 60.0) {
+      return stop;
+    }
+  }
+}
+
 }  // namespace mmh::arbiter

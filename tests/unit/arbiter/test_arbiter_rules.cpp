@@ -156,8 +156,11 @@ TEST_F(ArbiterRules, ReplansOnlyPastTheHalfwayPointFromTheCommittedState) {
   EXPECT_LT((later[0].start.position - expected.position).norm(), 1e-12);
   EXPECT_LT((later[0].start.velocity - expected.velocity).norm(), 1e-12);
   EXPECT_LT((later[0].start.acceleration - expected.acceleration).norm(), 1e-12);
-  // The new local target is again the planning range ahead of the start.
-  EXPECT_NEAR((later[0].target - later[0].start.position).norm(), 15.0, 1e-6);
+  // The new local target is again the planning range ahead of the start, or at the map
+  // window's face (0.5 m inside) when that comes first.
+  const double expected_x = std::min(later[0].start.position.x() + 15.0, 16.0 - 0.5);
+  EXPECT_NEAR(later[0].target.x(), expected_x, 1e-6);
+  EXPECT_NEAR(later[0].target.y(), 0.0, 1e-6);
 }
 
 TEST_F(ArbiterRules, NoHalfwayReplanWhenTheTrajectoryEndsAtTheGoal) {
@@ -190,6 +193,27 @@ TEST_F(ArbiterRules, NewObstacleOnTheCommittedTrajectoryAsksEamWithTheReference)
   // The reference is the rest of the committed trajectory from the new start time.
   EXPECT_LT((requests[0].reference.position(0) - requests[0].start.position).norm(), 1e-9);
   EXPECT_TRUE(requests[0].target.isApprox(a->committed().position(a->committed().duration())));
+}
+
+TEST_F(ArbiterRules, FarCollisionsAreLeftToTheHalfwayReplan) {
+  auto lazy = started(Policy::kMmh);
+  lazy->onAnswer(okAnswer(lazy->takeRequests().at(0)), at(0.001));
+  ASSERT_TRUE(lazy->takeCommit());
+  params_.defer_far_collisions = false;
+  auto eager = started(Policy::kMmh);
+  eager->onAnswer(okAnswer(eager->takeRequests().at(0)), at(0.001));
+  ASSERT_TRUE(eager->takeCommit());
+  putPillar(13.5, 0.0, 0.3);  // near the end of the committed trajectories, far beyond halfway
+  lazy->onMapUpdated(grid_, ++map_seq_, at(0.5), at(0.5));
+  eager->onMapUpdated(grid_, map_seq_, at(0.5), at(0.5));
+  EXPECT_TRUE(lazy->takeRequests().empty());
+  auto now = eager->takeRequests();  // without the deferral: EAM at once
+  ASSERT_EQ(now.size(), 1u);
+  EXPECT_EQ(now[0].trigger, Trigger::kCollision);
+  // The halfway replan comes first and plans with the map that has the pillar.
+  auto later = fly(*lazy, 0.51, lazy->committed().duration());
+  ASSERT_EQ(later.size(), 1u);
+  EXPECT_EQ(later[0].trigger, Trigger::kHalfway);
 }
 
 TEST_F(ArbiterRules, SomFailureFallsBackToEam) {

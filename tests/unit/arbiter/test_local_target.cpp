@@ -23,27 +23,36 @@ mmh::VoxelGrid gridWithPillarAt(double x, double y) {
 
 TEST(LocalTarget, RangeLimitedOnTheWayToTheGoal) {
   auto t = mmh::arbiter::chooseLocalTarget(nullptr, Vector3d(0, 0, 1), Vector3d(28, 0, 1), 15.0,
-                                           kFenceMin, kFenceMax);
+                                           kFenceMin, kFenceMax, 0.3);
   EXPECT_TRUE(t.position.isApprox(Vector3d(15, 0, 1)));
   EXPECT_FALSE(t.is_goal);
   t = mmh::arbiter::chooseLocalTarget(nullptr, Vector3d(0, 0, 1), Vector3d(10, 0, 1), 15.0,
-                                      kFenceMin, kFenceMax);
+                                      kFenceMin, kFenceMax, 0.3);
   EXPECT_TRUE(t.is_goal);
   EXPECT_TRUE(t.position.isApprox(Vector3d(10, 0, 1)));
   // Clamped into the geofence.
   t = mmh::arbiter::chooseLocalTarget(nullptr, Vector3d(0, 0, 1), Vector3d(5, 0, 9), 15.0,
-                                      kFenceMin, kFenceMax);
+                                      kFenceMin, kFenceMax, 0.3);
   EXPECT_NEAR(t.position.z(), 2.7, 1e-12);
 }
 
 TEST(LocalTarget, TargetInsideAnObstacleMovesBackAlongTheLine) {
   mmh::VoxelGrid g = gridWithPillarAt(10.0, 0.0);
   auto t = mmh::arbiter::chooseLocalTarget(&g, Vector3d(0, 0, 1.2), Vector3d(10, 0, 1.2), 15.0,
-                                           kFenceMin, kFenceMax);
+                                           kFenceMin, kFenceMax, 0.3);
   EXPECT_TRUE(t.moved);
   EXPECT_FALSE(t.is_goal);
   EXPECT_FALSE(g.isBlockedPoint(t.position));
   EXPECT_NEAR(t.position.y(), 0.0, 1e-9);
   EXPECT_LT(t.position.x(), 10.0 - 0.5 - 0.3 + 0.11);  // just in front of the inflated pillar
   EXPECT_GT(t.position.x(), 10.0 - 0.5 - 0.3 - 0.3);
+}
+
+TEST(LocalTarget, StaysInsideTheMapWindowOnTheWayToTheGoal) {
+  mmh::VoxelGrid g(0.1, Vector3i(-100, -100, 0), Vector3i(200, 200, 30));  // 20 x 20 x 3 m
+  auto t = mmh::arbiter::chooseLocalTarget(&g, Vector3d(0, 0, 1.2), Vector3d(28, 7, 1.2), 15.0,
+                                           kFenceMin, kFenceMax, 0.3, 0.5);
+  EXPECT_FALSE(t.is_goal);
+  EXPECT_NEAR(t.position.x(), 9.5, 1e-9);               // window face at 10 m, 0.5 m margin
+  EXPECT_NEAR(t.position.y(), 9.5 * 7.0 / 28.0, 1e-9);  // still on the line to the goal
 }

@@ -131,6 +131,8 @@ class Arbiter {
   void commit(const Trajectory& trajectory, int64_t start_utime, Mode mode, bool ends_at_goal);
   void commitStop(int64_t now, const std::string& why, Trigger trigger);
   bool collisionAhead(int64_t now) const;
+  // A collision ahead that the halfway replan would not reach in time (see ArbiterParams).
+  bool collisionThreat(int64_t now) const;
   KinematicState stateAt(int64_t utime) const;
   void pushDecision(DecisionOut decision);
 

@@ -35,8 +35,12 @@ struct ArbiterParams {
                                          // below the planners' so discretisation cannot make a
                                          // freshly verified answer look colliding
   double answer_speed_tolerance = 0.05;  // accepted relative excess over v_max / a_max (EAM's)
-  double stale_map_s = 1.0;              // LOCAL_MAP older than this (message clock) is stale
-  double narrow_probe_dist_m = 0.8;      // for moving a local target out of obstacles
+  // A collision found beyond the halfway point (plus this margin) of the committed trajectory is
+  // left to the halfway replan, which comes first; nearer ones trigger EAM at once.
+  bool defer_far_collisions = true;
+  double collision_margin_s = 1.5;
+  double stale_map_s = 1.0;          // LOCAL_MAP older than this (message clock) is stale
+  double narrow_probe_dist_m = 0.8;  // for moving a local target out of obstacles
   Eigen::Vector3d geofence_min_m = Eigen::Vector3d(-1e3, -1e3, 0.0);
   Eigen::Vector3d geofence_max_m = Eigen::Vector3d(1e3, 1e3, 1e3);
 

@@ -1,0 +1,169 @@
+#include "bench_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace mmh::bench {
+namespace {
+
+std::string fmt(double v, int digits = 2) {
+  if (!std::isfinite(v)) return "–";
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << v;
+  return s.str();
+}
+
+std::string densityLabel(double d) {
+  return d < 0 ? "own world" : fmt(d, 2);
+}
+
+}  // namespace
+
+Stat statOf(const std::vector<double>& values) {
+  Stat s;
+  double sum = 0, sq = 0;
+  s.max = -INFINITY;
+  s.min = INFINITY;
+  for (double v : values) {
+    if (!std::isfinite(v)) continue;
+    ++s.n;
+    sum += v;
+    sq += v * v;
+    s.max = std::max(s.max, v);
+    s.min = std::min(s.min, v);
+  }
+  if (s.n == 0) return Stat{0, NAN, NAN, NAN, NAN};
+  s.avg = sum / s.n;
+  s.std = s.n > 1 ? std::sqrt(std::max(0.0, (sq - s.n * s.avg * s.avg) / (s.n - 1))) : 0.0;
+  return s;
+}
+
+PaperFigures paperFigures(double d) {
+  // BENCHMARK.md (paper Tables I and II).
+  if (std::abs(d - 0.0) < 1e-9) return {16.52, 15.39, 39.89, 15.56, 9.0, 0.1};
+  if (std::abs(d - 0.05) < 1e-9) return {17.04, 17.04, 40.20, 43.93, 12.7, 0.3};
+  if (std::abs(d - 0.1) < 1e-9) return {17.89, 17.89, 40.84, 80.91, 17.5, 0.7};
+  if (std::abs(d - 0.2) < 1e-9) return {18.62, 18.62, 41.66, 136.43, 22.5, 0.9};
+  return {NAN, NAN, NAN, NAN, NAN, NAN};
+}
+
+std::string summaryMarkdown(const std::vector<FlightResult>& results, const std::string& command,
+                            double wall_time_s) {
+  std::set<double> densities;
+  std::vector<std::string> methods;
+  for (const FlightResult& r : results) {
+    densities.insert(r.spec.density);
+    if (std::find(methods.begin(), methods.end(), r.spec.method) == methods.end())
+      methods.push_back(r.spec.method);
+  }
+  auto select = [&](double d, const std::string& m) {
+    std::vector<const FlightResult*> out;
+    for (const FlightResult& r : results)
+      if (r.spec.density == d && r.spec.method == m) out.push_back(&r);
+    return out;
+  };
+  // Metrics of successful flights only, as the paper reports them.
+  auto collect = [](const std::vector<const FlightResult*>& rs, auto field) {
+    std::vector<double> v;
+    for (const FlightResult* r : rs)
+      if (r->success) v.push_back(field(*r));
+    return v;
+  };
+
+  std::ostringstream md;
+  md << "# Mission benchmark\n\n";
+  md << "Command: `" << command << "`  \n";
+  md << "Flights: " << results.size() << ", wall time " << fmt(wall_time_s / 60.0, 1)
+     << " min. Metrics of successful flights; cost = wall-clock compute time per planning call "
+        "on this machine.\n\n";
+
+  md << "## Success\n\n| density | method | flights | success | collided | timeout | stops |\n"
+        "|---|---|---|---|---|---|---|\n";
+  for (double d : densities) {
+    for (const std::string& m : methods) {
+      auto rs = select(d, m);
+      if (rs.empty()) continue;
+      int ok = 0, col = 0, to = 0, stops = 0;
+      for (auto* r : rs) {
+        ok += r->success;
+        col += r->collided;
+        to += (!r->reached && !r->collided);
+        stops += r->stops;
+      }
+      md << "| " << densityLabel(d) << " | " << m << " | " << rs.size() << " | "
+         << fmt(100.0 * ok / rs.size(), 1) << "% | " << col << " | " << to << " | " << stops
+         << " |\n";
+    }
+  }
+
+  md << "\n## Table I: flight time (s), distance (m), energy (m²/s⁵) — avg / std / max / min\n\n"
+        "| density | method | time avg | std | max | min | dist avg | std | max | min | energy "
+        "avg | std | max | min | time / bound |\n|---|---|---|---|---|---|---|---|---|---|---|---|"
+        "---|---|---|\n";
+  for (double d : densities) {
+    for (const std::string& m : methods) {
+      auto rs = select(d, m);
+      if (rs.empty()) continue;
+      const Stat t = statOf(collect(rs, [](const FlightResult& r) { return r.flight_time_s; }));
+      const Stat l = statOf(collect(rs, [](const FlightResult& r) { return r.distance_m; }));
+      const Stat e = statOf(collect(rs, [](const FlightResult& r) { return r.energy; }));
+      const Stat q = statOf(collect(rs, [](const FlightResult& r) { return r.time_ratio; }));
+      md << "| " << densityLabel(d) << " | " << m << " | " << fmt(t.avg) << " | " << fmt(t.std)
+         << " | " << fmt(t.max) << " | " << fmt(t.min) << " | " << fmt(l.avg) << " | " << fmt(l.std)
+         << " | " << fmt(l.max) << " | " << fmt(l.min) << " | " << fmt(e.avg) << " | " << fmt(e.std)
+         << " | " << fmt(e.max) << " | " << fmt(e.min) << " | " << fmt(q.avg, 3) << " |\n";
+    }
+    const PaperFigures p = paperFigures(d);
+    if (std::isfinite(p.time_mmh)) {
+      md << "| " << densityLabel(d) << " | *paper MMH* | " << fmt(p.time_mmh) << " | | | | "
+         << fmt(p.distance_mmh) << " | | | | " << fmt(p.energy_mmh) << " | | | | |\n";
+      md << "| " << densityLabel(d) << " | *paper best time* | " << fmt(p.time_best)
+         << " | | | | | | | | | | | | |\n";
+    }
+  }
+
+  md << "\n## Table II: planning iterations and computational cost per iteration\n\n"
+        "| density | method | iterations avg | FPM | SOM | EAM | cost ms avg | p50 | p99 |\n"
+        "|---|---|---|---|---|---|---|---|---|\n";
+  for (double d : densities) {
+    for (const std::string& m : methods) {
+      auto rs = select(d, m);
+      if (rs.empty()) continue;
+      const Stat it =
+          statOf(collect(rs, [](const FlightResult& r) { return double(r.iterations); }));
+      const Stat f =
+          statOf(collect(rs, [](const FlightResult& r) { return double(r.iterations_fpm); }));
+      const Stat s =
+          statOf(collect(rs, [](const FlightResult& r) { return double(r.iterations_som); }));
+      const Stat e =
+          statOf(collect(rs, [](const FlightResult& r) { return double(r.iterations_eam); }));
+      // Cost per iteration over all calls of all flights: weight each flight by its calls.
+      double cost_sum = 0, calls = 0;
+      std::vector<double> p50s, p99s;
+      for (auto* r : rs) {
+        if (!r->success) continue;
+        cost_sum += r->cost_ms_mean * r->iterations;
+        calls += r->iterations;
+        p50s.push_back(r->cost_ms_p50);
+        p99s.push_back(r->cost_ms_p99);
+      }
+      md << "| " << densityLabel(d) << " | " << m << " | " << fmt(it.avg, 1) << " | "
+         << fmt(f.avg, 1) << " | " << fmt(s.avg, 1) << " | " << fmt(e.avg, 1) << " | "
+         << fmt(calls > 0 ? cost_sum / calls : NAN, 3) << " | " << fmt(statOf(p50s).avg, 3) << " | "
+         << fmt(statOf(p99s).max, 3) << " |\n";
+    }
+    const PaperFigures p = paperFigures(d);
+    if (std::isfinite(p.iterations_mmh)) {
+      md << "| " << densityLabel(d) << " | *paper MMH* | " << fmt(p.iterations_mmh, 1)
+         << " | | | | " << fmt(p.cost_ms_mmh, 1) << " | | |\n";
+    }
+  }
+  md << "\nPaper figures from BENCHMARK.md (paper's machine: i9-13980HX; ours: 2 shared cores).\n";
+  return md.str();
+}
+
+}  // namespace mmh::bench

@@ -1,0 +1,98 @@
+#include "flight_spec.hpp"
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace mmh::bench {
+namespace {
+
+// JSON has no NaN/Inf: write null, read null back as NaN.
+nlohmann::json number(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
+}
+double number(const nlohmann::json& j) {
+  return j.is_null() ? NAN : j.get<double>();
+}
+
+}  // namespace
+
+std::string FlightSpec::id() const {
+  std::ostringstream s;
+  s << method << "_d" << std::fixed << std::setprecision(2) << density << "_m" << map_index << "_t"
+    << trial;
+  return s.str();
+}
+
+nlohmann::json toJson(const FlightResult& r) {
+  const FlightSpec& f = r.spec;
+  return nlohmann::json{
+      {"method", f.method},
+      {"density", f.density},
+      {"world", f.world},
+      {"map_index", f.map_index},
+      {"map_seed", f.map_seed},
+      {"trial", f.trial},
+      {"noise_seed", f.noise_seed},
+      {"start", {f.start.x(), f.start.y(), f.start.z()}},
+      {"goal", {f.goal.x(), f.goal.y(), f.goal.z()}},
+      {"success", r.success},
+      {"reached", r.reached},
+      {"collided", r.collided},
+      {"timed_out", r.timed_out},
+      {"flight_time_s", number(r.flight_time_s)},
+      {"distance_m", number(r.distance_m)},
+      {"energy", number(r.energy)},
+      {"iterations", r.iterations},
+      {"cost_ms_mean", number(r.cost_ms_mean)},
+      {"cost_ms_p50", number(r.cost_ms_p50)},
+      {"cost_ms_p99", number(r.cost_ms_p99)},
+      {"mode_iterations",
+       {{"fpm", r.iterations_fpm}, {"som", r.iterations_som}, {"eam", r.iterations_eam}}},
+      {"time_bound_s", number(r.time_bound_s)},
+      {"time_ratio", number(r.time_ratio)},
+      {"min_clearance_m", number(r.min_clearance_m)},
+      {"stops", r.stops},
+      {"wall_time_s", number(r.wall_time_s)},
+      {"error", r.error},
+  };
+}
+
+FlightResult fromJson(const nlohmann::json& j) {
+  FlightResult r;
+  FlightSpec& f = r.spec;
+  f.method = j.at("method").get<std::string>();
+  f.density = j.at("density").get<double>();
+  f.world = j.at("world").get<std::string>();
+  f.map_index = j.at("map_index").get<int>();
+  f.map_seed = j.at("map_seed").get<int64_t>();
+  f.trial = j.at("trial").get<int>();
+  f.noise_seed = j.at("noise_seed").get<int64_t>();
+  for (int i = 0; i < 3; ++i) {
+    f.start[i] = j.at("start").at(i).get<double>();
+    f.goal[i] = j.at("goal").at(i).get<double>();
+  }
+  r.success = j.at("success").get<bool>();
+  r.reached = j.at("reached").get<bool>();
+  r.collided = j.at("collided").get<bool>();
+  r.timed_out = j.at("timed_out").get<bool>();
+  r.flight_time_s = number(j.at("flight_time_s"));
+  r.distance_m = number(j.at("distance_m"));
+  r.energy = number(j.at("energy"));
+  r.iterations = j.at("iterations").get<int>();
+  r.cost_ms_mean = number(j.at("cost_ms_mean"));
+  r.cost_ms_p50 = number(j.at("cost_ms_p50"));
+  r.cost_ms_p99 = number(j.at("cost_ms_p99"));
+  r.iterations_fpm = j.at("mode_iterations").at("fpm").get<int>();
+  r.iterations_som = j.at("mode_iterations").at("som").get<int>();
+  r.iterations_eam = j.at("mode_iterations").at("eam").get<int>();
+  r.time_bound_s = number(j.at("time_bound_s"));
+  r.time_ratio = number(j.at("time_ratio"));
+  r.min_clearance_m = number(j.at("min_clearance_m"));
+  r.stops = j.at("stops").get<int>();
+  r.wall_time_s = number(j.at("wall_time_s"));
+  r.error = j.at("error").get<std::string>();
+  return r;
+}
+
+}  // namespace mmh::bench

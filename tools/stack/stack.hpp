@@ -1,0 +1,74 @@
+// mmh-stack's engine: every service of one or more vehicles hosted in one process on one
+// memq:// LCM, with the simulator in lock-step. Messages are delivered synchronously after each
+// simulation step, so a flight runs faster than real time, planning takes no simulated time, and
+// the same seed gives the same flight. Used by mmh-stack, mmh-bench, mmh-replay and the tests.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mmh/common/config.hpp"
+#include "mmh/sim/mission.hpp"
+#include "mmh/sim/simulator.hpp"
+
+namespace mmh {
+
+struct StackOptions {
+  Config config;
+  sim::SimOptions sim;
+  std::string prefix;        // channel prefix of the vehicle
+  std::string policy;        // empty: arbiter.policy from the config
+  double timeout_s = 120.0;  // simulated seconds before giving up
+  std::string log_path;      // if set: an LCM log of every message (event time = sim time)
+  double map_loss = 0.0;     // test switch: share of LOCAL_MAP messages the planners lose
+  uint64_t loss_seed = 1;
+};
+
+// One planning call as seen on PLAN_RESULT.
+struct PlanCall {
+  int mode = 0;
+  bool ok = false;
+  int reason = 0;
+  double compute_ms = 0.0;
+  double sim_time_s = 0.0;
+};
+
+struct PathSample {
+  double t = 0.0;  // simulated seconds since the start
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  double speed = 0.0;
+  int mode = 0;  // mode of the trajectory being flown (plan_request_t.MODE_*), 0 = none
+};
+
+struct FlightRecord {
+  sim::MissionMetrics metrics;
+  std::string end_reason;  // "reached", "collided" or "timeout"
+  std::vector<PlanCall> calls;
+  std::array<int, 5> iterations{};  // planning calls per mode index
+  int commits = 0, stops = 0, failed_decisions = 0;
+  std::vector<PathSample> path;  // 10 Hz
+  double sim_time_s = 0.0;
+  double wall_time_s = 0.0;
+  bool success() const { return metrics.reached && !metrics.collided; }
+};
+
+class Stack {
+ public:
+  explicit Stack(const StackOptions& options);
+  ~Stack();
+  Stack(const Stack&) = delete;
+  Stack& operator=(const Stack&) = delete;
+
+  // Publishes the goal and runs until the goal is reached, the vehicle collides, or timeout_s.
+  FlightRecord fly();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace mmh
