@@ -86,10 +86,10 @@ double SpatioTemporalOptimizer::evaluateRaw(const double* x, double* grad,
   const double vl2 = settings_.v_limit * settings_.v_limit;
   const double al2 = settings_.a_limit * settings_.a_limit;
   const double w = settings_.penalty_weight;
-  const int K = settings_.samples_per_piece;
   double energy = 0.0, penalty = 0.0;
 
   for (int i = 0; i < pieces; ++i) {
+    const int K = samples_[i];
     const KnotState &ka = knots_[i], &kb = knots_[i + 1];
     const double T = durations_[i], T2 = T * T, T3 = T2 * T, T4 = T3 * T, T5 = T4 * T, T6 = T5 * T;
     const Eigen::Vector3d dp = kb.p - ka.p;
@@ -111,14 +111,18 @@ double SpatioTemporalOptimizer::evaluateRaw(const double* x, double* grad,
     double gT = 36.0 * c3.squaredNorm() + 288.0 * c3.dot(c4) * T + 576.0 * c4.squaredNorm() * T2 +
                 720.0 * c3.dot(c5) * T2 + 2880.0 * c4.dot(c5) * T3 + 3600.0 * c5.squaredNorm() * T4;
 
-    // Penalties on the samples t_j = j T / K, trapezoid rule in time.
+    // Penalties on the samples t_j = j T / K, trapezoid rule in time. Velocity and acceleration
+    // by Horner's rule; most samples are inside the limits and cost nothing more.
+    const Eigen::Vector3d v1 = 2.0 * c2, v2 = 3.0 * c3, v3 = 4.0 * c4, v4 = 5.0 * c5;
+    const Eigen::Vector3d a1 = 6.0 * c3, a2 = 12.0 * c4, a3 = 20.0 * c5;
     for (int j = 0; j <= K; ++j) {
       const double alpha = static_cast<double>(j) / K;
-      const double t = alpha * T, t2 = t * t, t3 = t2 * t, t4 = t3 * t;
-      const Eigen::Vector3d vel = c1 + 2.0 * c2 * t + 3.0 * c3 * t2 + 4.0 * c4 * t3 + 5.0 * c5 * t4;
-      const Eigen::Vector3d acc = 2.0 * c2 + 6.0 * c3 * t + 12.0 * c4 * t2 + 20.0 * c5 * t3;
+      const double t = alpha * T;
+      const Eigen::Vector3d vel = c1 + t * (v1 + t * (v2 + t * (v3 + t * v4)));
+      const Eigen::Vector3d acc = v1 + t * (a1 + t * (a2 + t * a3));
       const double ev = vel.squaredNorm() - vl2, ea = acc.squaredNorm() - al2;
       if (ev <= 0.0 && ea <= 0.0) continue;
+      const double t2 = t * t, t3 = t2 * t, t4 = t3 * t;
       double f = 0.0;
       Eigen::Vector3d gv = Eigen::Vector3d::Zero(), ga = Eigen::Vector3d::Zero();
       // Quadratic in the excess of the squared norm: C1, and steep enough near zero that the
@@ -202,8 +206,18 @@ double SpatioTemporalOptimizer::nloptObjective(unsigned, const double* x, double
   return cost;
 }
 
-int SpatioTemporalOptimizer::optimize(const OptimizerSettings& settings) {
+void SpatioTemporalOptimizer::setSettings(const OptimizerSettings& settings) {
   settings_ = settings;
+  // Samples per piece, fixed for a run (the cost must not jump as durations change): about one
+  // per 0.1 s, at least 2 and at most samples_per_piece intervals.
+  samples_.resize(durations_.size());
+  for (int i = 0; i < durations_.size(); ++i)
+    samples_[i] = std::clamp(static_cast<int>(std::ceil(durations_[i] / 0.05)), 2,
+                             std::max(2, settings.samples_per_piece));
+}
+
+int SpatioTemporalOptimizer::optimize(const OptimizerSettings& settings) {
+  setSettings(settings);
   evaluations_ = 0;
   std::vector<double> x = pack();
   // NLopt's L-BFGS takes the plain negative gradient as its first trial step: scale the cost so
@@ -229,7 +243,7 @@ int SpatioTemporalOptimizer::optimize(const OptimizerSettings& settings) {
 }
 
 CostBreakdown SpatioTemporalOptimizer::costs(const OptimizerSettings& settings) {
-  settings_ = settings;
+  setSettings(settings);
   const std::vector<double> x = pack();
   CostBreakdown c;
   evaluateRaw(x.data(), nullptr, &c);

@@ -107,6 +107,18 @@ TEST(FpmPlanner, FifteenMetresRestToRestInAnyDirection) {
   }
 }
 
+TEST(FpmPlanner, ShortFlightsStayCloseToTheirBound) {
+  const mmh::fpm::Planner planner(params());
+  for (const auto& [length, bound] : {std::pair<double, double>{5.0, 5.0 / 3.0 + 1.5},
+                                      std::pair<double, double>{2.0, 2.0 * std::sqrt(2.0 / 2.0)}}) {
+    const auto r =
+        request(Vector3d(0, 0, 1.2), Vector3d::Zero(), Vector3d::Zero(), Vector3d(length, 0, 1.2));
+    const auto res = planner.plan(r);
+    verify(r, res, "short");
+    EXPECT_LT(res.trajectory.duration(), (length > 3.0 ? 1.04 : 1.06) * bound) << length;
+  }
+}
+
 TEST(FpmPlanner, MovingStartKeepsCruisingAndBrakesOnlyAtTheEnd) {
   const mmh::fpm::Planner planner(params());
   const auto r =

@@ -18,7 +18,7 @@ struct Params {
   double penalty_weight = 1e6;        // weight of the quadratic limit-violation penalties
   double limit_margin_ratio = 0.005;  // guess and penalties use (1 - margin) x the limits
   int samples_per_piece = 8;          // penalty samples per polynomial piece
-  int max_evaluations = 20;           // cost evaluations per optimisation run
+  int max_evaluations = 12;           // cost evaluations per optimisation run
 };
 
 // Reads vehicle.max_vel_mps, vehicle.max_acc_mps2, geofence.min_m / max_m and the fpm section.

@@ -28,8 +28,8 @@ struct Result {
   CostBreakdown cost;
   // Diagnostics.
   double max_speed = 0.0, max_acc = 0.0;  // exact maxima of the returned trajectory
-  double profile_duration = 0.0;          // trapezoidal profile of the initial guess (a bound)
-  int evaluations = 0;                    // cost evaluations over all optimisation runs
+  double profile_duration = 0.0;  // the trapezoidal profile the initial guess was built from
+  int evaluations = 0;            // cost evaluations over all optimisation runs
   int repairs = 0;  // re-optimisations and retries with wider margins after a failed check
 };
 

@@ -17,7 +17,7 @@ struct OptimizerSettings {
   double v_limit = 3.0, a_limit = 2.0;  // where the penalties start
   double time_weight = 1000.0;          // rho
   double penalty_weight = 1e4;
-  int samples_per_piece = 10;
+  int samples_per_piece = 10;  // at most; about one sample interval per 0.1 s, at least 2
   int max_evaluations = 100;
   double relative_tolerance = 1e-6;  // stop when the cost improves less than this (relative)
 };
@@ -56,7 +56,7 @@ class SpatioTemporalOptimizer {
   // then one tau per piece.
   double evaluate(const std::vector<double>& x, std::vector<double>* grad);
   std::vector<double> pack() const;
-  void setSettings(const OptimizerSettings& settings) { settings_ = settings; }
+  void setSettings(const OptimizerSettings& settings);
 
  private:
   double evaluateRaw(const double* x, double* grad, CostBreakdown* breakdown);
@@ -71,6 +71,7 @@ class SpatioTemporalOptimizer {
   Eigen::Matrix3Xd basis_ = Eigen::Matrix3d::Identity();
   Eigen::VectorXd durations_;
   OptimizerSettings settings_;
+  std::vector<int> samples_;  // sample intervals per piece
   int num_vars_ = 0;
   int evaluations_ = 0;
   double scale_ = 1.0;  // cost scale seen by NLopt (largest initial partial derivative -> 1)
