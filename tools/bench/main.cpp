@@ -13,6 +13,7 @@
 
 #include "bench_report.hpp"
 #include "mmh/common/cli.hpp"
+#include "mmh/common/log.hpp"
 #include "mmh/common/node_options.hpp"
 #include "run_flight.hpp"
 

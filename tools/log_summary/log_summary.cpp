@@ -7,11 +7,18 @@
 #include <iomanip>
 #include <stdexcept>
 
+#include <nlohmann/json.hpp>
+#include <set>
+
 #include "mmh/arbiter_status_t.hpp"
+#include "mmh/common/local_map_codec.hpp"
+#include "mmh/goal_t.hpp"
 #include "mmh/local_map_t.hpp"
 #include "mmh/mission_status_t.hpp"
+#include "mmh/odometry_t.hpp"
 #include "mmh/plan_request_t.hpp"
 #include "mmh/plan_result_t.hpp"
+#include "mmh/trajectory_t.hpp"
 
 namespace mmh {
 namespace {
@@ -273,6 +280,74 @@ void printDecisions(const LogSummary& s, std::ostream& out) {
           << "\n";
     }
   }
+}
+
+void exportFlight(const std::string& log_path, const std::string& prefix, std::ostream& out) {
+  lcm::LogFile log(log_path, "r");
+  if (!log.good()) throw std::runtime_error("cannot read LCM log " + log_path);
+  nlohmann::json j;
+  auto& path = j["path"] = nlohmann::json::array();            // t, x, y, z, speed, mode
+  auto& decisions = j["decisions"] = nlohmann::json::array();  // t, x, y, mode, trigger
+  std::set<std::pair<int, int>> occupied;                      // global voxel x, y
+  LocalMapReceiver map;
+  double resolution = 0.1;
+  int mode = 0;
+  int64_t t0 = -1, next_sample = 0;
+  while (const lcm::LogEvent* e = log.readNextEvent()) {
+    const auto [p, base] = splitChannel(e->channel);
+    if (p != prefix) continue;
+    if (base == "ODOMETRY") {
+      odometry_t m;
+      if (!decode(*e, m)) continue;
+      if (t0 < 0) t0 = m.header.utime;
+      if (m.header.utime < next_sample) continue;
+      next_sample = m.header.utime + 100'000;
+      const double speed = std::sqrt(m.velocity[0] * m.velocity[0] + m.velocity[1] * m.velocity[1] +
+                                     m.velocity[2] * m.velocity[2]);
+      path.push_back(
+          {(m.header.utime - t0) * 1e-6, m.position[0], m.position[1], m.position[2], speed, mode});
+    } else if (base == "TRAJECTORY") {
+      trajectory_t m;
+      if (decode(*e, m)) mode = m.source_mode;
+    } else if (base == "ARBITER_STATUS") {
+      arbiter_status_t m;
+      if (!decode(*e, m) || (m.outcome != arbiter_status_t::OUTCOME_COMMITTED &&
+                             m.outcome != arbiter_status_t::OUTCOME_STOPPING))
+        continue;
+      decisions.push_back({t0 < 0 ? 0.0 : (m.header.utime - t0) * 1e-6, m.position[0],
+                           m.position[1], m.committed_mode, m.trigger});
+    } else if (base == "GOAL") {
+      goal_t m;
+      if (decode(*e, m)) j["goal"] = {m.position[0], m.position[1], m.position[2]};
+    } else if (base == "MISSION_STATUS") {
+      mission_status_t m;
+      if (!decode(*e, m)) continue;
+      j["mission"] = {{"reached", m.reached},
+                      {"collided", m.collided},
+                      {"flight_time_s", m.flight_time_s},
+                      {"distance_m", m.distance_m},
+                      {"energy", m.energy}};
+    } else if (base == "LOCAL_MAP") {
+      local_map_t m;
+      if (!decode(*e, m) || map.apply(m) != LocalMapReceiver::Result::kApplied) continue;
+      const VoxelGrid& g = map.grid();
+      resolution = g.resolution();
+      auto add = [&](int64_t i) {
+        if (g.atLinear(i) != Occupancy::kOccupied) return;
+        const Eigen::Vector3i global = g.originIndex() + g.localFromLinear(i);
+        occupied.insert({global.x(), global.y()});
+      };
+      if (map.lastWasKeyframe()) {
+        for (int64_t i = 0; i < g.numCells(); ++i) add(i);
+      } else {
+        for (int64_t i : map.lastChangedCells()) add(i);
+      }
+    }
+  }
+  j["resolution_m"] = resolution;
+  auto& cells = j["occupied_xy"] = nlohmann::json::array();
+  for (const auto& [x, y] : occupied) cells.push_back({x, y});
+  out << j.dump() << "\n";
 }
 
 }  // namespace mmh

@@ -66,4 +66,10 @@ void printSummary(const LogSummary& summary, std::ostream& out);
 // Every arbiter decision, one per line.
 void printDecisions(const LogSummary& summary, std::ostream& out);
 
+// What tools/plot_flight.py draws, as JSON: the flown path (from ODOMETRY, 10 Hz, with speed
+// and the mode of the trajectory being flown), every committed decision (position, mode), the
+// goal, the mission result, and the xy footprint of every cell the vehicle mapped as occupied.
+// `prefix` selects the vehicle. Throws std::runtime_error when the log cannot be read.
+void exportFlight(const std::string& log_path, const std::string& prefix, std::ostream& out);
+
 }  // namespace mmh

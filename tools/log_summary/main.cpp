@@ -1,4 +1,5 @@
 // mmh-log-summary: what happened in a recorded flight (lcm-logger or mmh-stack --log).
+#include <fstream>
 #include <iostream>
 
 #include "log_summary.hpp"
@@ -10,6 +11,11 @@ int main(int argc, char** argv) {
                         "Channels and rates, planning iterations per mode, request-to-result "
                         "latency percentiles and LOCAL_MAP sequence gaps of an LCM log.");
   bool decisions = false;
+  std::string export_path, prefix;
+  parser.addString("--export-flight", &export_path,
+                   "write the flight (path, decisions, mapped obstacles) as JSON for "
+                   "tools/plot_flight.py");
+  parser.addString("--prefix", &prefix, "with --export-flight: the vehicle's channel prefix");
   parser.addFlag("--decisions", &decisions, "also list every arbiter decision");
   parser.addPositional("LOG...", &logs, "LCM log files");
   int code = 0;
@@ -19,6 +25,16 @@ int main(int argc, char** argv) {
     return 2;
   }
   int status = 0;
+  if (!export_path.empty()) {
+    try {
+      std::ofstream out(export_path);
+      mmh::exportFlight(logs.front(), prefix, out);
+      return 0;
+    } catch (const std::exception& e) {
+      std::cerr << "mmh-log-summary: " << e.what() << "\n";
+      return 1;
+    }
+  }
   for (const std::string& path : logs) {
     try {
       const mmh::LogSummary summary = mmh::summarizeLog(path);

@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# The demo: a UAV flies the 40 m mission of the paper through an unknown 0.1 obs/m² forest, in
+# real time, with every service as its own process talking over LCM (udpm://, LCM's default
+# ttl=0). It sets up and builds first if needed, prints flight time, distance, energy,
+# iterations per mode and cost per iteration, and leaves the LCM log of the flight and a picture.
+#
+#   deploy/demo.sh [--density D] [--seed N] [--sensor depth|lidar] [--out DIR] [--spy]
+#                  [--host-network]
+#
+# By default everything runs in a private network namespace (loopback only, no root needed), so
+# no packet — not even a multicast group join — leaves this machine. --host-network runs on the
+# host's network instead (still ttl=0) so that lcm-spy or lcm-logger in another terminal see it;
+# that needs a multicast route (see README). --spy opens the project's lcm-spy alongside.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+density=0.1 seed=7 sensor=depth spy=0 host_network=0
+out=${MMH_DEMO_OUT:-}
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --density) density=$2; shift 2 ;;
+    --seed) seed=$2; shift 2 ;;
+    --sensor) sensor=$2; shift 2 ;;
+    --out) out=$2; shift 2 ;;
+    --spy) spy=1; shift ;;
+    --host-network) host_network=1; shift ;;
+    -h|--help) sed -n 2,14p "$0"; exit 0 ;;
+    *) echo "demo.sh: unknown option $1" >&2; exit 2 ;;
+  esac
+done
+
+if [ "${MMH_IN_NETNS:-0}" != 1 ]; then
+  "$root/deploy/setup.sh"
+  out=${out:-$root/out/demo-$(date +%Y%m%d-%H%M%S)}
+  mkdir -p "$out"
+  out=$(cd "$out" && pwd)
+  args=(--density "$density" --seed "$seed" --sensor "$sensor" --out "$out")
+  [ $spy = 1 ] && args+=(--spy)
+  if [ $host_network = 0 ]; then
+    exec "$root/tests/integration/netns.sh" "$0" "${args[@]}"
+  fi
+  export MMH_IN_NETNS=1  # on the host network: run the rest here
+fi
+
+bin=$root/build/bin
+run=$out/run
+log=$out/flight.lcm
+goal=19.95,0,1.2
+mkdir -p "$run"
+unset LCM_DEFAULT_URL  # LCM's default: udpm://239.255.76.67:7667?ttl=0
+echo "demo: output in $out"
+cleanup() {
+  "$root/deploy/launch/stack.sh" stop --run-dir "$run" >/dev/null 2>&1 || true
+  [ -n "${logger_pid:-}" ] && kill "$logger_pid" 2>/dev/null && wait "$logger_pid" 2>/dev/null
+  [ -n "${spy_pid:-}" ] && kill "$spy_pid" 2>/dev/null
+  true
+}
+trap cleanup EXIT
+
+lcm-logger -f "$log" >"$run/lcm-logger.log" 2>&1 &
+logger_pid=$!
+if [ $spy = 1 ]; then
+  "$root/tools/lcm-spy" >"$run/lcm-spy.log" 2>&1 &
+  spy_pid=$!
+fi
+echo "demo: starting mapping, awareness, FPM, SOM, EAM, arbiter and the simulator (one process each)"
+"$root/deploy/launch/stack.sh" start --run-dir "$run" \
+  --sim-args "--world forest --density $density --seed $seed --sensor $sensor --realtime" \
+  --goal "$goal" | sed 's/^/  /'
+echo "demo: flying to $goal (watch: $bin/mmh-top in the same network; logs in $run)"
+status=0
+"$bin/mmh-mission-report" --timeout 120 || status=$?
+sleep 0.5
+cleanup
+trap - EXIT
+echo "demo: LCM log of the flight: $log"
+"$root/tools/plot-flight" "$log" "$out/flight.png" | sed 's/^plot: /demo: picture of the flight: /'
+exit $status
