@@ -304,20 +304,24 @@ void OccupancyMap::castFree(const Eigen::Vector3d& origin, const Eigen::Vector3d
                  wz = static_cast<unsigned>(size_.z());
   const int ox = origin_.x(), oy = origin_.y(), oz = origin_.z();
   uint8_t* const stamps = stamp_.data();
+  // Appended without a branch (whether a cell is new to this scan is unpredictable).
+  size_t count = free_list_.size();
+  free_list_.resize(count + static_cast<size_t>(std::max(0, w.steps)));
+  uint32_t* const list = free_list_.data();
   for (int k = 0; k < w.steps; ++k) {
     // The window is convex: a ray that left it does not come back.
     if (static_cast<unsigned>(cx - ox) >= wx || static_cast<unsigned>(cy - oy) >= wy ||
         static_cast<unsigned>(cz - oz) >= wz) {
-      return;
+      break;
     }
     const uint32_t slot =
         static_cast<uint32_t>(((((rz >> 3) * by) + (ry >> 3)) * bx + (rx >> 3)) << 9 |
                               ((rz & 7) << 6) | ((ry & 7) << 3) | (rx & 7));
     const uint8_t s = stamps[slot];
-    if (s != free_stamp && s != occ_stamp) {
-      stamps[slot] = free_stamp;
-      free_list_.push_back(slot);
-    }
+    const bool fresh = s != free_stamp && s != occ_stamp;
+    stamps[slot] = fresh ? free_stamp : s;
+    list[count] = slot;
+    count += fresh;
     if (tx < ty && tx < tz) {
       cx += sx;
       rx += sx;
@@ -335,6 +339,7 @@ void OccupancyMap::castFree(const Eigen::Vector3d& origin, const Eigen::Vector3d
       tz += dz;
     }
   }
+  free_list_.resize(count);
 }
 
 Eigen::Vector3i OccupancyMap::cellOfSlot(uint32_t slot) const {
