@@ -26,8 +26,11 @@ int main(int argc, char** argv) {
                     "goal x,y,z (m): kept clear in the forest, used until a GOAL arrives");
   parser.addString("--sensor", &o.sensor, "depth or lidar");
   parser.addInt("--noise-seed", &noise_seed, "seed of the range noise (sim.*.range_noise_m)");
-  parser.addDouble("--yaw-deg", &o.initial_yaw_deg, "initial heading (default: towards the goal)");
-  parser.addFlag("--realtime", &realtime, "pace simulated time by the wall clock (default)");
+  parser.addDouble("--yaw-deg", &o.initial_yaw_deg,
+                   "initial heading in degrees (nan: towards the goal)");
+  parser.addFlag("--realtime", &realtime,
+                 "pace simulated time by the wall clock (the only mode of this executable; "
+                 "lock-step runs drive SimNode inside mmh-stack)");
   parser.addDouble("--speed", &speed, "simulated seconds per wall-clock second");
   parser.addDouble("--duration", &duration_s, "stop after this many simulated seconds (0: never)");
   parser.addFlag("--exit-when-finished", &exit_when_finished,

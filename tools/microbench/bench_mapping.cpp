@@ -34,7 +34,7 @@ void BM_MappingFlight(benchmark::State& state) {
   const mmh::FlightScans& flight = mmh::flightScans(density, kind, stride);
   auto mapper = std::make_unique<mmh::mapping::Mapper>(params);
   std::vector<double> delta_cpu_ms, delta_ms, keyframe_ms, delta_kb, keyframe_kb, points, rays,
-      cells, updated, created, free_cells;
+      cells, updated, free_cells;
   size_t i = 0;
   int64_t utime = 1'000'000'000;
   for (auto _ : state) {
@@ -66,14 +66,12 @@ void BM_MappingFlight(benchmark::State& state) {
     rays.push_back(static_cast<double>(result.insert.rays));
     cells.push_back(static_cast<double>(result.insert.cells_free + result.insert.cells_occupied));
     updated.push_back(static_cast<double>(result.insert.cells_updated));
-    created.push_back(static_cast<double>(result.insert.nodes_created));
     free_cells.push_back(static_cast<double>(result.insert.cells_free));
   }
   state.counters["points"] = percentile(points, 0.5);
   state.counters["rays"] = percentile(rays, 0.5);
   state.counters["cells"] = percentile(cells, 0.5);
   state.counters["updated"] = percentile(updated, 0.5);
-  state.counters["created"] = percentile(created, 0.5);
   state.counters["free_cells"] = percentile(free_cells, 0.5);
   state.counters["delta_p50_ms"] = percentile(delta_ms, 0.5);
   state.counters["delta_cpu_p50_ms"] = percentile(delta_cpu_ms, 0.5);

@@ -71,7 +71,8 @@ Mapper::Result Mapper::processScan(const ScanInput& scan, int64_t utime) {
     result.map = keyframeOf(map_, map_seq_);
     last_keyframe_utime_ = utime;
     keyframe_requested_ = false;
-    // Once per keyframe: free the tree memory the window left behind.
+    // Once per keyframe: bring the tree up to date and free the memory the window left behind.
+    map_.flush();
     map_.pruneOutsideWindow();
   } else {
     result.map = deltaOf(map_, map_seq_, map_.takeChanges());

@@ -76,6 +76,8 @@ struct OccupancyMap::Tree : public octomap::OcTree {
     const int span = 1 << (this->tree_depth - depth);
     const Eigen::Vector3i last = base + Eigen::Vector3i::Constant(span - 1);
     if (!boxesMeet(base, last, region_lo, region_hi)) return;
+    // Entirely inside the window: nothing to prune there.
+    if ((base.array() >= keep_lo.array()).all() && (last.array() <= keep_hi.array()).all()) return;
     if (!boxesMeet(base, last, keep_lo, keep_hi)) {
       pruneAll(node);
       return;
@@ -114,6 +116,7 @@ OccupancyMap::OccupancyMap(const MappingParams& params)
   node_.assign(n, nullptr);
   log_odds_.assign(n, std::numeric_limits<float>::quiet_NaN());
   stamp_.assign(n, 0);
+  dirty_.assign(n, 0);
 }
 
 OccupancyMap::~OccupancyMap() = default;
@@ -204,6 +207,7 @@ bool OccupancyMap::followVehicle(const Eigen::Vector3d& position) {
   const Eigen::Vector3d centre = (origin_.cast<double>() + 0.5 * size_.cast<double>()) * res_;
   if (((position - centre).cwiseAbs().array() <= params_.window_recenter_m).all()) return false;
   if (wanted == origin_) return false;
+  flush();  // cells about to leave must reach the tree
   const Eigen::Vector3i old = origin_;
   shiftStates(wanted - old);
   origin_ = wanted;
@@ -300,20 +304,24 @@ void OccupancyMap::castFree(const Eigen::Vector3d& origin, const Eigen::Vector3d
                  wz = static_cast<unsigned>(size_.z());
   const int ox = origin_.x(), oy = origin_.y(), oz = origin_.z();
   uint8_t* const stamps = stamp_.data();
+  // Appended without a branch (whether a cell is new to this scan is unpredictable).
+  size_t count = free_list_.size();
+  free_list_.resize(count + static_cast<size_t>(std::max(0, w.steps)));
+  uint32_t* const list = free_list_.data();
   for (int k = 0; k < w.steps; ++k) {
     // The window is convex: a ray that left it does not come back.
     if (static_cast<unsigned>(cx - ox) >= wx || static_cast<unsigned>(cy - oy) >= wy ||
         static_cast<unsigned>(cz - oz) >= wz) {
-      return;
+      break;
     }
     const uint32_t slot =
         static_cast<uint32_t>(((((rz >> 3) * by) + (ry >> 3)) * bx + (rx >> 3)) << 9 |
                               ((rz & 7) << 6) | ((ry & 7) << 3) | (rx & 7));
     const uint8_t s = stamps[slot];
-    if (s != free_stamp && s != occ_stamp) {
-      stamps[slot] = free_stamp;
-      free_list_.push_back(slot);
-    }
+    const bool fresh = s != free_stamp && s != occ_stamp;
+    stamps[slot] = fresh ? free_stamp : s;
+    list[count] = slot;
+    count += fresh;
     if (tx < ty && tx < tz) {
       cx += sx;
       rx += sx;
@@ -331,6 +339,7 @@ void OccupancyMap::castFree(const Eigen::Vector3d& origin, const Eigen::Vector3d
       tz += dz;
     }
   }
+  free_list_.resize(count);
 }
 
 Eigen::Vector3i OccupancyMap::cellOfSlot(uint32_t slot) const {
@@ -406,22 +415,33 @@ void OccupancyMap::apply(uint32_t slot, float delta, InsertStats* stats) {
   if (known && updated == old) return;  // clamped already: nothing changes
   ++stats->cells_updated;
   value = updated;
-  octomap::OcTreeNode*& node = node_[slot];
+  // The tree leaf is written back later (flush()), once for all updates until then.
+  if (!dirty_[slot]) {
+    dirty_[slot] = 1;
+    dirty_list_.push_back(slot);
+  }
   const Occupancy state = stateOf(updated);
-  const bool state_changed = !known || stateOf(old) != state;
-  if (node) {
-    node->setLogOdds(updated);
-    if (!state_changed) return;
-  }
-  const Eigen::Vector3i g = cellOfSlot(slot);
-  if (!node) {
-    node = tree_->setNodeValue(toKey(g), updated, /*lazy_eval=*/true);
-    ++stats->nodes_created;
-  }
-  if (state_changed) {
+  if (!known || stateOf(old) != state) {
+    const Eigen::Vector3i g = cellOfSlot(slot);
     states_[windowIndex(g)] = static_cast<uint8_t>(state);
     markChanged(g);
   }
+}
+
+size_t OccupancyMap::flush() {
+  size_t created = 0;
+  for (uint32_t slot : dirty_list_) {
+    dirty_[slot] = 0;
+    octomap::OcTreeNode*& node = node_[slot];
+    if (node) {
+      node->setLogOdds(log_odds_[slot]);
+    } else {
+      node = tree_->setNodeValue(toKey(cellOfSlot(slot)), log_odds_[slot], /*lazy_eval=*/true);
+      ++created;
+    }
+  }
+  dirty_list_.clear();
+  return created;
 }
 
 InsertStats OccupancyMap::insert(const FilteredScan& scan) {
@@ -479,6 +499,11 @@ std::vector<CellChange> OccupancyMap::takeChanges() {
 
 Occupancy OccupancyMap::query(const Eigen::Vector3d& p) const {
   const Eigen::Vector3i g((p / res_).array().floor().cast<int>());
+  if (has_window_ && inWindow(g)) {
+    // The window holds the newest values (the tree may wait for flush()).
+    const float value = log_odds_[ringIndex(g)];
+    return std::isnan(value) ? Occupancy::kUnknown : stateOf(value);
+  }
   if ((g.array().abs() >= kKeyOffset).any()) return Occupancy::kUnknown;
   const octomap::OcTreeNode* node = tree_->search(toKey(g));
   if (!node) return Occupancy::kUnknown;

@@ -17,7 +17,8 @@ void downsample(pcl::PointCloud<pcl::PointXYZ>::Ptr cloud, double leaf,
   const float l = static_cast<float>(leaf);
   grid.setLeafSize(l, l, l);
   grid.setInputCloud(cloud);
-  pcl::PointCloud<pcl::PointXYZ> result;
+  // Kept between calls: no allocation per scan (the service is single-threaded).
+  thread_local pcl::PointCloud<pcl::PointXYZ> result;
   grid.filter(result);
   out->reserve(result.size());
   for (const auto& p : result) out->emplace_back(p.x, p.y, p.z);
@@ -68,8 +69,11 @@ ScanError filterScan(const ScanInput& scan, const MappingParams& params, Filtere
   const double range = std::min(scan.max_range_m, params.max_range_m);
   out->origin = scan.sensor_position;
   out->range_m = range;
-  pcl::PointCloud<pcl::PointXYZ>::Ptr hits(new pcl::PointCloud<pcl::PointXYZ>);
-  pcl::PointCloud<pcl::PointXYZ>::Ptr ends(new pcl::PointCloud<pcl::PointXYZ>);
+  // Scratch clouds kept between scans (no allocation per scan).
+  thread_local pcl::PointCloud<pcl::PointXYZ>::Ptr hits(new pcl::PointCloud<pcl::PointXYZ>);
+  thread_local pcl::PointCloud<pcl::PointXYZ>::Ptr ends(new pcl::PointCloud<pcl::PointXYZ>);
+  hits->clear();
+  ends->clear();
   hits->reserve(scan.num_points);
   ends->reserve(scan.num_points);
   const double no_return_beyond = scan.max_range_m + kNoReturnTolerance_m;

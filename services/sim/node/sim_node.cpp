@@ -102,6 +102,14 @@ void SimNode::step() {
     pointcloud_t cloud = makePointcloud(sim_.lastScan());
     ctx_.publish(channels::kPointcloud, cloud);
   }
+  if (sim_.vehicle().jumps() != jumps_seen_) {
+    // The committed trajectory did not start where the vehicle was: a planner/arbiter bug.
+    ctx_.increment("trajectory_jumps", sim_.vehicle().jumps() - jumps_seen_);
+    jumps_seen_ = sim_.vehicle().jumps();
+    logWarn(ctx_.service() + ": trajectory " + std::to_string(sim_.vehicle().activeTrajectoryId()) +
+            " does not start where the vehicle is: jumped " +
+            std::to_string(sim_.vehicle().lastJump()) + " m");
+  }
   const sim::MissionMetrics& m = sim_.metrics();
   if (m.reached && !reported_reached_) {
     reported_reached_ = true;

@@ -44,6 +44,7 @@ class SimNode {
   ServiceContext& ctx_;
   sim::Simulator sim_;
   bool reported_reached_ = false, reported_collision_ = false;
+  int jumps_seen_ = 0;
 };
 
 }  // namespace mmh

@@ -124,7 +124,19 @@ void ForestWorld::raycast(const Eigen::Vector3d& origin, const std::vector<Eigen
 }
 
 double ForestWorld::clearance(const Eigen::Vector3d& p) const {
-  return distanceToForest(cylinders_, p);
+  // Exact distance to the finite cylinders (side, caps and rims), negative inside.
+  double best = std::numeric_limits<double>::infinity();
+  for (const Cylinder& c : cylinders_) {
+    const double radial = (p.head<2>() - c.center).norm() - c.radius;
+    const double vertical = std::max(c.z_min - p.z(), p.z() - c.z_max);
+    double d;
+    if (vertical <= 0.0)
+      d = radial <= 0.0 ? std::max(radial, vertical) : radial;
+    else
+      d = radial <= 0.0 ? vertical : std::hypot(radial, vertical);
+    best = std::min(best, d);
+  }
+  return best;
 }
 
 double ForestWorld::shortestPathLength(const Eigen::Vector3d& a, const Eigen::Vector3d& b,

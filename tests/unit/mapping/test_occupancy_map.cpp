@@ -94,6 +94,7 @@ TEST(OccupancyMap, SameVoxelsAndLogOddsAsOctoMapInsertPointCloud) {
     const Eigen::Vector3f far = o + (p - o) * 1.5f;
     cloud.push_back(far.x(), far.y(), far.z());
   }
+  map.flush();
   ref.insertPointCloud(cloud, octomap::point3d(o.x(), o.y(), o.z()), scan.range_m,
                        /*lazy_eval=*/true);  // no pruning: one leaf per voxel, as ours
   // Only the window is mapped (rays going 30 deg down leave its bottom at -0.8 m).
@@ -131,6 +132,7 @@ TEST(OccupancyMap, WindowFollowsTheVehicleAndRemembersWhatItLeft) {
   // Far away (the window leaves the mapped area entirely), prune, and back.
   EXPECT_TRUE(map.followVehicle(origin + Vector3d(60.0, 0.0, 0.0)));
   EXPECT_EQ(std::count(map.windowStates().begin(), map.windowStates().end(), 2), 0);
+  map.flush();
   const size_t leaves_before_prune = map.octreeLeaves();
   map.pruneOutsideWindow();
   EXPECT_LT(map.octreeLeaves(), leaves_before_prune);

@@ -80,4 +80,9 @@ TEST(ForestWorld, ClearanceAndGeneratorDensityClearanceDeterminism) {
   const mmh::sim::ForestWorld one({Cylinder{Eigen::Vector2d(1, 0), 0.5, 0, 3}});
   EXPECT_NEAR(one.clearance(Vector3d(-1, 0, 1)), 1.5, 1e-12);
   EXPECT_TRUE(std::isinf(mmh::sim::ForestWorld({}).clearance(Vector3d::Zero())));
+  // Above the top, beside the rim, inside.
+  EXPECT_NEAR(one.clearance(Vector3d(1, 0, 3.4)), 0.4, 1e-12);
+  EXPECT_NEAR(one.clearance(Vector3d(1.8, 0, 3.4)), 0.5, 1e-12);
+  EXPECT_NEAR(one.clearance(Vector3d(1.1, 0, 1.0)), -0.4, 1e-12);
+  EXPECT_NEAR(one.clearance(Vector3d(1.0, 0, 2.9)), -0.1, 1e-12);
 }

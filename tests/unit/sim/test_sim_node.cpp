@@ -88,6 +88,23 @@ TEST(SimNode, PublishesAndFollowsInLockStep) {
   EXPECT_NEAR(last.goal[0], options.start.x() + 1.0, 1e-12);
   EXPECT_GT(last.flight_time_s, 1.0);
   EXPECT_NEAR(last.distance_m, 0.7, 0.05);  // arrival within 0.3 m of the 1 m goal
+
+  // A trajectory that starts 2 m away from the vehicle: followed (exactly), but the jump is
+  // counted and logged.
+  auto elsewhere = mmh::test::line(options.start + Vector3d(1.0, 2.0, 0), Vector3d::Zero(), 1.0);
+  msg.trajectory_id = 10;
+  msg.header.utime = sim.nowUtime();
+  msg.start_utime = sim.nowUtime() + 20'000;
+  mmh::toMsg(*elsewhere, msg);
+  test_ctx.publish(mmh::channels::kTrajectory, msg);
+  for (int i = 0; i < 5; ++i) {
+    while (lcm.handleTimeout(0) > 0) {
+    }
+    sim.step();
+  }
+  EXPECT_EQ(sim_ctx.counter("trajectory_jumps"), 1);
+  EXPECT_NEAR((sim.simulator().vehicle().state().position - elsewhere->position(0)).norm(), 0.0,
+              1e-12);
 }
 
 TEST(SimNode, BadConfigOrOptionsFailAtStartUp) {

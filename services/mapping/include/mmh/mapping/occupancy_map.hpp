@@ -6,9 +6,10 @@
 // the ray keys and walking the tree from the root for each), and a depth frame touches ~40,000
 // voxels, far over the 5 ms budget. Here rays are traversed in a dense ring buffer over the
 // window that caches each voxel's log-odds and a pointer to its OcTree leaf: a voxel that is
-// already clamped costs nothing, one that changes is written to its leaf directly, and only new
-// voxels walk the tree (OcTree::setNodeValue). The tree stays the store (lazy inner nodes);
-// subtrees left behind by the moving window are pruned as OctoMap does.
+// already clamped costs nothing, and changed voxels are written back to their leaves in batches
+// (flush(): before the window moves and at every keyframe), once however often they changed;
+// only new voxels walk the tree (OcTree::setNodeValue). The tree is the store (lazy inner
+// nodes); subtrees left behind by the moving window are pruned as OctoMap does.
 #pragma once
 
 #include <Eigen/Core>
@@ -33,7 +34,6 @@ struct InsertStats {
   size_t cells_free = 0;      // distinct voxels that received a miss
   size_t cells_occupied = 0;  // distinct voxels that received a hit
   size_t cells_updated = 0;   // voxels whose log-odds changed (not already clamped)
-  size_t nodes_created = 0;   // voxels that walked the tree (new or under a pruned node)
   size_t ends_outside = 0;    // returns outside the window (not inserted)
 };
 
@@ -69,8 +69,12 @@ class OccupancyMap {
   Occupancy stateAt(const Eigen::Vector3d& p) const;
   // A VoxelGrid copy of the window (allocates; for tests and tools).
   VoxelGrid window() const;
-  // State of any point from the tree (outside the window too).
+  // State of any point: from the window inside it, from the tree outside.
   Occupancy query(const Eigen::Vector3d& p) const;
+  // Writes the window's changed log-odds to their tree leaves (creating leaves for new voxels).
+  // Done before every window move and by Mapper at every keyframe; returns the leaves created.
+  size_t flush();
+  // The tree; its leaves inside the window are current after flush().
   const octomap::OcTree& octree() const;
   size_t octreeLeaves() const;
   // Collapses identical siblings in the tree outside the window (OctoMap's pruning).
@@ -123,7 +127,9 @@ class OccupancyMap {
   std::vector<uint8_t> stamp_;              // per-scan marks: 2 gen = free, 2 gen + 1 = hit
   uint8_t generation_ = 0;
   std::vector<uint32_t> occupied_list_, free_list_;  // ring slots touched by the scan
-  std::vector<int64_t> changed_;                     // packed global cells whose state changed
+  std::vector<uint8_t> dirty_;                       // per slot: changed since the last flush
+  std::vector<uint32_t> dirty_list_;
+  std::vector<int64_t> changed_;  // packed global cells whose state changed
   bool moved_since_prune_ = false;
   // Bounding box (inclusive) of the windows since the last pruning.
   Eigen::Vector3i region_lo_ = Eigen::Vector3i::Zero(), region_hi_ = Eigen::Vector3i::Zero();

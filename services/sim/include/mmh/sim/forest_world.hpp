@@ -18,6 +18,7 @@ class ForestWorld : public World {
 
   void raycast(const Eigen::Vector3d& origin, const std::vector<Eigen::Vector3d>& dirs,
                double max_range, std::vector<double>* ranges) const override;
+  // Exact 3-D distance to the nearest cylinder (side, caps, rims).
   double clearance(const Eigen::Vector3d& p) const override;
   // Exact: cylinders are full height, so the path is the 2-D shortest path among discs inflated
   // by `radius` (shortestPathAmongDiscs), with the height difference added in quadrature. Worlds
