@@ -149,7 +149,8 @@ bool CorridorBuilder::build(const VoxelGrid& grid, const std::vector<Eigen::Vect
       *why = "seed outside the corridor bounds";
       return false;
     }
-    blockedSurfacePoints(grid, box_lo, box_hi, escape, &points_);
+    mask_.build(grid, box_lo, box_hi, escape);
+    mask_.surfacePoints(&points_);
     out->surface_points += static_cast<int>(points_.size());
     Polytope poly;
     Ellipsoid metric;
@@ -160,7 +161,7 @@ bool CorridorBuilder::build(const VoxelGrid& grid, const std::vector<Eigen::Vect
     // Surface points suffice in practice; this scan proves it for every blocked cell centre.
     bool clean = false;
     for (int pass = 0; pass < 4 && !clean; ++pass) {
-      blockedPointsInside(grid, box_lo, box_hi, poly, escape, &extra_);
+      mask_.pointsInside(poly, &extra_);
       clean = extra_.empty();
       if (!clean && !inflator_.exclude(extra_, metric, a, b, inflation.plane_offset_m, &poly)) {
         *why = "an obstacle point lies on the seed segment";

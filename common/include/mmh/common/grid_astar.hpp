@@ -46,6 +46,12 @@ class GridAStar {
   std::vector<int32_t> parent_;
   std::vector<uint32_t> stamp_;
   uint32_t generation_ = 0;
+  struct OpenEntry {
+    float f;
+    int32_t index;
+    bool operator>(const OpenEntry& o) const { return f > o.f; }
+  };
+  std::vector<OpenEntry> open_;  // the open list's storage, reused across searches
 };
 
 // Removes intermediate points while the straight segment between kept points stays free.

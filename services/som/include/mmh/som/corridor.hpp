@@ -43,6 +43,7 @@ class CorridorBuilder {
 
  private:
   PolytopeInflator inflator_;
+  BlockedMask mask_;
   std::vector<Eigen::Vector3d> points_, extra_;
 };
 

@@ -30,7 +30,7 @@ struct CorridorParams {
 struct OptimizerParams {
   double time_weight = 1000.0;  // rho in J = int |jerk|^2 dt + rho T
   double piece_length_m = 3.0;  // pieces per polytope = ceil(length / piece_length_m)
-  int samples_per_piece = 8;    // constraint samples per piece (trapezoid rule)
+  int samples_per_piece = 6;    // constraint samples per piece (trapezoid rule)
   double weight_corridor = 1e5;
   double weight_velocity = 1e3;
   double weight_acceleration = 1e3;
@@ -40,7 +40,7 @@ struct OptimizerParams {
   // verification tolerances.
   double limit_margin = 0.01;
   double corridor_margin_m = 0.03;
-  int max_evaluations = 80;
+  int max_evaluations = 60;
   // If the result still leaves the corridor: up to this many further runs with a 10x corridor
   // weight, of this many evaluations each.
   int extra_rounds = 2;
