@@ -10,6 +10,7 @@ namespace mmh::som {
 namespace {
 // Room kept on both sides of a face, relative, in the ellipsoid's unit-ball coordinates.
 constexpr double kSeedMargin = 1e-3;
+constexpr double kBoxInset = 1e-6;  // m
 }  // namespace
 
 bool separatingPlane(const Eigen::Vector3d& x, const Eigen::Vector3d& ua, const Eigen::Vector3d& ub,
@@ -118,7 +119,8 @@ bool PolytopeInflator::inflate(const std::vector<Eigen::Vector3d>& points,
   }
   for (int round = 0; round < options.iterations; ++round) {
     Polytope candidate;
-    candidate.addBox(lo, hi);
+    // A hair inside the box, so that cell centres on its faces are strictly outside.
+    candidate.addBox(lo.array() + kBoxInset, hi.array() - kBoxInset);
     if (!exclude(points, metric, a, b, options.plane_offset_m, &candidate)) return false;
     *poly = std::move(candidate);
     *ellipsoid = metric;

@@ -48,9 +48,11 @@ void expectVerified(const som_test::World& w, const mmh::KinematicState& start,
   EXPECT_LT(t.duration(), 1.6 * bound);
   EXPECT_GT(t.duration(),
             0.8 * mmh::som::restToRestTimeBound((w.target - start.position).norm(), v_max, a_max));
-  EXPECT_GT(out.timings.total_us, 0.0);
-  EXPECT_GE(out.timings.total_us,
-            out.timings.astar_us + out.timings.corridor_us + out.timings.optimize_us);
+  const auto& tm = out.timings;
+  EXPECT_GT(tm.total.wall_us, 0.0);
+  EXPECT_GT(tm.total.cpu_us, 0.0);
+  EXPECT_GE(tm.total.wall_us, tm.astar.wall_us + tm.corridor.wall_us + tm.optimize.wall_us);
+  EXPECT_GT(tm.astar.cpu_us + tm.corridor.cpu_us + tm.optimize.cpu_us, 0.0);
 }
 
 mmh::KinematicState atRest(const Vector3d& p) {

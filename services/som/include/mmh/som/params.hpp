@@ -13,8 +13,8 @@ namespace mmh::som {
 struct CorridorParams {
   // Obstacle points are taken from a box around each seed segment, this much larger on every
   // side; it also bounds the polytope.
-  double box_margin_m = 1.5;
-  double box_margin_z_m = 0.6;  // vertically
+  double box_margin_m = 1.2;
+  double box_margin_z_m = 0.5;  // vertically
   // Longest seed segment (a sub-segment of the shortened A* path) one polytope is grown around.
   double seed_length_m = 3.0;
   // Hyperplane rounds; an inscribed-ellipsoid step runs between two rounds (FIRI).
