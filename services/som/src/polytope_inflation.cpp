@@ -55,19 +55,25 @@ bool PolytopeInflator::exclude(const std::vector<Eigen::Vector3d>& points, const
   const Eigen::Matrix3d cinv = metric.shape.inverse();
   const Eigen::Vector3d& d = metric.center;
   const Eigen::Vector3d ua = cinv * (a - d), ub = cinv * (b - d);
+  // Structure of arrays, compacted as faces cut points away: the scans stay contiguous.
   const int n = static_cast<int>(points.size());
+  xs_.resize(n);
+  ys_.resize(n);
+  zs_.resize(n);
   dist2_.resize(n);
-  alive_.resize(n);
   for (int j = 0; j < n; ++j) {
-    dist2_[j] = (cinv * (points[j] - d)).squaredNorm();
-    alive_[j] = j;
+    const Eigen::Vector3d& p = points[j];
+    xs_[j] = p.x();
+    ys_[j] = p.y();
+    zs_[j] = p.z();
+    dist2_[j] = (cinv * (p - d)).squaredNorm();
   }
   int count = n;
   while (count > 0) {
     int best = 0;
     for (int i = 1; i < count; ++i)
-      if (dist2_[alive_[i]] < dist2_[alive_[best]]) best = i;
-    const Eigen::Vector3d& p = points[alive_[best]];
+      if (dist2_[i] < dist2_[best]) best = i;
+    const Eigen::Vector3d p(xs_[best], ys_[best], zs_[best]);
     // Prefer a face with a little room on both sides (the seed strictly inside, the point
     // strictly outside); a point very close to the seed leaves only the face through it.
     const Eigen::Vector3d xp = cinv * (p - d);
@@ -84,10 +90,16 @@ bool PolytopeInflator::exclude(const std::vector<Eigen::Vector3d>& points, const
     const Eigen::Vector3d unit = normal / norm;
     const double rhs = (level + normal.dot(d)) / norm - shift;
     if (!poly->addHalfspace(unit, rhs)) return false;
+    const double nx = unit.x(), ny = unit.y(), nz = unit.z();
     int kept = 0;
     for (int i = 0; i < count; ++i) {
-      const int j = alive_[i];
-      if (unit.dot(points[j]) < rhs) alive_[kept++] = j;
+      if (nx * xs_[i] + ny * ys_[i] + nz * zs_[i] < rhs) {
+        xs_[kept] = xs_[i];
+        ys_[kept] = ys_[i];
+        zs_[kept] = zs_[i];
+        dist2_[kept] = dist2_[i];
+        ++kept;
+      }
     }
     if (kept >= count) return false;  // cannot happen: the chosen point is cut (guard)
     count = kept;

@@ -40,8 +40,7 @@ class PolytopeInflator {
                const Eigen::Vector3d& a, const Eigen::Vector3d& b, double offset, Polytope* poly);
 
  private:
-  std::vector<double> dist2_;
-  std::vector<int> alive_;
+  std::vector<double> xs_, ys_, zs_, dist2_;
 };
 
 }  // namespace mmh::som
