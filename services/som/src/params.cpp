@@ -55,6 +55,8 @@ SomParams loadSomParams(const Config& c) {
   o.extra_rounds = optInt(c, "som.extra_rounds", o.extra_rounds, 0, 10);
   o.extra_round_evaluations =
       optInt(c, "som.extra_round_evaluations", o.extra_round_evaluations, 1, 100000);
+  o.extra_round_weight_factor =
+      optDouble(c, "som.extra_round_weight_factor", o.extra_round_weight_factor, 1.0, 1000.0);
   o.repair_tolerance = optDouble(c, "som.repair_tolerance", o.repair_tolerance, 0.0, 0.05);
 
   VerifyParams& v = p.verify;

@@ -279,7 +279,7 @@ bool TrajectoryOptimizer::optimize(OptimizerOutput* out) {
   // continue from where it stopped.
   for (int round = 0; round < params_.extra_rounds && std::isfinite(best); ++round) {
     if (corridorViolation(x) <= 0.0) break;
-    corridor_boost_ *= 10.0;
+    corridor_boost_ *= params_.extra_round_weight_factor;
     best = runNlopt(x, params_.extra_round_evaluations, &out->nlopt_result, &out->message);
     ++out->extra_rounds;
   }

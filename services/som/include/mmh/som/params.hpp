@@ -41,10 +41,11 @@ struct OptimizerParams {
   double limit_margin = 0.01;
   double corridor_margin_m = 0.03;
   int max_evaluations = 60;
-  // If the result still leaves the corridor: up to this many further runs with a 10x corridor
-  // weight, of this many evaluations each.
+  // If the result still leaves the corridor: up to this many further runs, each with the
+  // corridor weight multiplied by the factor, of this many evaluations each.
   int extra_rounds = 2;
   int extra_round_evaluations = 30;
+  double extra_round_weight_factor = 10.0;
   // Durations are stretched until the exact max speed / acceleration are within this (relative)
   // of the limits.
   double repair_tolerance = 0.002;
