@@ -57,6 +57,9 @@ SomParams loadSomParams(const Config& c) {
       optInt(c, "som.extra_round_evaluations", o.extra_round_evaluations, 1, 100000);
   o.extra_round_weight_factor =
       optDouble(c, "som.extra_round_weight_factor", o.extra_round_weight_factor, 1.0, 1000.0);
+  o.extra_round_limit_excess =
+      optDouble(c, "som.extra_round_limit_excess", o.extra_round_limit_excess, 0.0, 1.0);
+  o.max_repair_stretch = optDouble(c, "som.max_repair_stretch", o.max_repair_stretch, 1.0, 10.0);
   o.repair_tolerance = optDouble(c, "som.repair_tolerance", o.repair_tolerance, 0.0, 0.05);
 
   VerifyParams& v = p.verify;

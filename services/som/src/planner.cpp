@@ -159,8 +159,9 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
     escape.radius = p.start_escape_radius_m;
   }
   std::string why;
-  const bool corridor_ok = corridor_builder_.build(grid, out.path, bound_lo, bound_hi, escape,
-                                                   p.corridor, &out.corridor, &why);
+  const bool corridor_ok =
+      corridor_builder_.build(grid, out.path, bound_lo, bound_hi, escape, p.corridor, &out.corridor,
+                              &why, start.velocity, p.max_acc_mps2);
   step.stop(&out.timings.corridor);
   if (!corridor_ok) return finish(PlanStatus::kCorridor, why);
 

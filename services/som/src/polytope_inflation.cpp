@@ -13,17 +13,19 @@ constexpr double kSeedMargin = 1e-3;
 constexpr double kBoxInset = 1e-6;  // m
 }  // namespace
 
-bool separatingPlane(const Eigen::Vector3d& x, const Eigen::Vector3d& ua, const Eigen::Vector3d& ub,
+bool separatingPlane(const Eigen::Vector3d& x, const Eigen::Vector3d* seed, int count,
                      Eigen::Vector3d* y, double seed_margin) {
-  // The optimum is the minimum-norm point of the affine set of one of the active sets {},
-  // {a}, {b}, {a, b}; every candidate has |y| >= the optimum, so the smallest feasible wins.
+  // The optimum is the minimum-norm point of the affine set of one of the active sets (no seed
+  // constraint, one, or two of them: with y . x = 1 that is at most three equations in R^3);
+  // every candidate has |y| >= the optimum, so the smallest feasible one wins.
   const double xx = x.squaredNorm();
-  if (!(xx > 0.0)) return false;
+  if (!(xx > 0.0) || count < 1 || count > 3) return false;
   const double tol = 1e-9, side = 1.0 - seed_margin;
   double best = std::numeric_limits<double>::infinity();
   auto consider = [&](const Eigen::Vector3d& cand) {
     if (!cand.allFinite()) return;
-    if (cand.dot(ua) > side + tol || cand.dot(ub) > side + tol) return;
+    for (int i = 0; i < count; ++i)
+      if (cand.dot(seed[i]) > side + tol) return;
     const double n = cand.squaredNorm();
     if (n < best) {
       best = n;
@@ -31,30 +33,42 @@ bool separatingPlane(const Eigen::Vector3d& x, const Eigen::Vector3d& ua, const 
     }
   };
   consider(x / xx);
-  for (const Eigen::Vector3d* v : {&ua, &ub}) {
+  for (int i = 0; i < count; ++i) {
     // min |y| with y . x = 1, y . v = side: y = G^T (G G^T)^-1 (1, side).
-    const double xv = x.dot(*v), vv = v->squaredNorm();
+    const Eigen::Vector3d& v = seed[i];
+    const double xv = x.dot(v), vv = v.squaredNorm();
     const double det = xx * vv - xv * xv;
     if (det <= 1e-12 * xx * vv) continue;
-    const double l0 = (vv - xv * side) / det, l1 = (xx * side - xv) / det;
-    consider(l0 * x + l1 * *v);
+    consider((vv - xv * side) / det * x + (xx * side - xv) / det * v);
   }
-  Eigen::Matrix3d g;
-  g.row(0) = x.transpose();
-  g.row(1) = ua.transpose();
-  g.row(2) = ub.transpose();
-  const double det = g.determinant();
-  const double scale = std::sqrt(xx * ua.squaredNorm() * ub.squaredNorm());
-  if (std::abs(det) > 1e-10 * scale) consider(g.inverse() * Eigen::Vector3d(1.0, side, side));
+  for (int i = 0; i < count; ++i) {
+    for (int j = i + 1; j < count; ++j) {
+      Eigen::Matrix3d g;
+      g.row(0) = x.transpose();
+      g.row(1) = seed[i].transpose();
+      g.row(2) = seed[j].transpose();
+      const double det = g.determinant();
+      const double scale = std::sqrt(xx * seed[i].squaredNorm() * seed[j].squaredNorm());
+      if (std::abs(det) > 1e-10 * scale) consider(g.inverse() * Eigen::Vector3d(1.0, side, side));
+    }
+  }
   return std::isfinite(best);
 }
 
+bool separatingPlane(const Eigen::Vector3d& x, const Eigen::Vector3d& ua, const Eigen::Vector3d& ub,
+                     Eigen::Vector3d* y, double seed_margin) {
+  const Eigen::Vector3d seed[2] = {ua, ub};
+  return separatingPlane(x, seed, 2, y, seed_margin);
+}
+
 bool PolytopeInflator::exclude(const std::vector<Eigen::Vector3d>& points, const Ellipsoid& metric,
-                               const Eigen::Vector3d& a, const Eigen::Vector3d& b, double offset,
-                               Polytope* poly) {
+                               const Seed& seed, double offset, Polytope* poly) {
+  if (seed.empty() || seed.size() > 3) return false;
   const Eigen::Matrix3d cinv = metric.shape.inverse();
   const Eigen::Vector3d& d = metric.center;
-  const Eigen::Vector3d ua = cinv * (a - d), ub = cinv * (b - d);
+  const int k = static_cast<int>(seed.size());
+  Eigen::Vector3d su[3];
+  for (int i = 0; i < k; ++i) su[i] = cinv * (seed[i] - d);
   // Structure of arrays, compacted as faces cut points away: the scans stay contiguous.
   const int n = static_cast<int>(points.size());
   xs_.resize(n);
@@ -79,8 +93,8 @@ bool PolytopeInflator::exclude(const std::vector<Eigen::Vector3d>& points, const
     const Eigen::Vector3d xp = cinv * (p - d);
     Eigen::Vector3d y;
     double level = 1.0 - 0.5 * kSeedMargin, shift = 0.0;
-    if (!separatingPlane(xp, ua, ub, &y, kSeedMargin)) {
-      if (!separatingPlane(xp, ua, ub, &y, 0.0)) return false;
+    if (!separatingPlane(xp, su, k, &y, kSeedMargin)) {
+      if (!separatingPlane(xp, su, k, &y, 0.0)) return false;
       level = 1.0;
       shift = offset;
     }
@@ -109,11 +123,21 @@ bool PolytopeInflator::exclude(const std::vector<Eigen::Vector3d>& points, const
 
 bool PolytopeInflator::inflate(const std::vector<Eigen::Vector3d>& points,
                                const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
-                               const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                               const InflationOptions& options, Polytope* poly,
+                               const Seed& seed, const InflationOptions& options, Polytope* poly,
                                Ellipsoid* ellipsoid) {
-  // First metric: an ellipsoid stretched along the seed whose cross-section reaches the nearest
-  // obstacle point, so that the first faces come from the obstacles beside the seed.
+  if (seed.empty() || seed.size() > 3) return false;
+  // First metric: an ellipsoid stretched along the seed's longest edge, centred on the seed,
+  // whose cross-section reaches the nearest obstacle point, so that the first faces come from
+  // the obstacles beside the seed.
+  Eigen::Vector3d a = seed.front(), b = seed.front(), center = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < seed.size(); ++i) {
+    center += seed[i] / static_cast<double>(seed.size());
+    for (size_t j = i + 1; j < seed.size(); ++j)
+      if ((seed[i] - seed[j]).squaredNorm() > (a - b).squaredNorm()) {
+        a = seed[i];
+        b = seed[j];
+      }
+  }
   const Eigen::Vector3d ab = b - a;
   const double len = ab.norm();
   double nearest2 = std::numeric_limits<double>::infinity();
@@ -123,7 +147,7 @@ bool PolytopeInflator::inflate(const std::vector<Eigen::Vector3d>& points,
   }
   const double r = std::clamp(std::sqrt(nearest2), 0.05, 1.0);
   Ellipsoid metric;
-  metric.center = 0.5 * (a + b);
+  metric.center = center;
   metric.shape = r * Eigen::Matrix3d::Identity();
   if (len > 0.0) {
     const Eigen::Vector3d e = ab / len;
@@ -133,7 +157,7 @@ bool PolytopeInflator::inflate(const std::vector<Eigen::Vector3d>& points,
     Polytope candidate;
     // A hair inside the box, so that cell centres on its faces are strictly outside.
     candidate.addBox(lo.array() + kBoxInset, hi.array() - kBoxInset);
-    if (!exclude(points, metric, a, b, options.plane_offset_m, &candidate)) return false;
+    if (!exclude(points, metric, seed, options.plane_offset_m, &candidate)) return false;
     *poly = std::move(candidate);
     *ellipsoid = metric;
     if (round + 1 == options.iterations) break;

@@ -155,7 +155,7 @@ TEST(PolytopeInflation, ExcludesEveryPointAndKeepsTheSeed) {
     options.iterations = 3;
     Polytope poly;
     Ellipsoid metric;
-    ASSERT_TRUE(inflator.inflate(points, Vector3d::Constant(-3), Vector3d::Constant(3), a, b,
+    ASSERT_TRUE(inflator.inflate(points, Vector3d::Constant(-3), Vector3d::Constant(3), {a, b},
                                  options, &poly, &metric));
     for (const Vector3d& p : points) EXPECT_GT(poly.maxViolation(p), 0.0);
     EXPECT_LT(poly.maxViolation(a), 0.0);

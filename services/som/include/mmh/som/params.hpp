@@ -41,14 +41,17 @@ struct OptimizerParams {
   double limit_margin = 0.01;
   double corridor_margin_m = 0.03;
   int max_evaluations = 60;
-  // If the result still leaves the corridor: up to this many further runs, each with the
-  // corridor weight multiplied by the factor, of this many evaluations each.
-  int extra_rounds = 2;
-  int extra_round_evaluations = 30;
+  // If the result still leaves the corridor, or (with a moving start) exceeds the limits by
+  // more than extra_round_limit_excess (relative): up to this many further runs, each with the
+  // weight of what is violated multiplied by the factor, of this many evaluations each.
+  int extra_rounds = 3;
+  int extra_round_evaluations = 40;
   double extra_round_weight_factor = 10.0;
+  double extra_round_limit_excess = 0.005;
   // Durations are stretched until the exact max speed / acceleration are within this (relative)
   // of the limits.
   double repair_tolerance = 0.002;
+  double max_repair_stretch = 4.0;   // at most this total time stretch
   double rel_cost_tolerance = 1e-5;  // stop when the cost improves less than this (relative)
   int lbfgs_memory = 8;
   double first_step = 0.3;  // length of L-BFGS's first (steepest-descent) step in the variables
