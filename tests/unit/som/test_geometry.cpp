@@ -137,6 +137,36 @@ TEST(SeparatingPlane, PassesThroughThePointAndKeepsTheSeed) {
                                          Vector3d(1, 0, 0), &y));
 }
 
+TEST(SeparatingPlane, KeepsAThreePointSeedAndIsOptimal) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  int solved = 0;
+  for (int trial = 0; trial < 500; ++trial) {
+    const Vector3d x(u(rng), u(rng), u(rng));
+    const Vector3d seed[3] = {Vector3d(u(rng), u(rng), u(rng)), Vector3d(u(rng), u(rng), u(rng)),
+                              Vector3d(u(rng), u(rng), u(rng))};
+    Vector3d y;
+    if (!mmh::som::separatingPlane(x, seed, 3, &y)) continue;
+    ++solved;
+    EXPECT_NEAR(y.dot(x), 1.0, 1e-9);
+    for (const Vector3d& v : seed) EXPECT_LE(y.dot(v), 1.0 + 1e-7);
+    for (int k = 0; k < 20; ++k) {
+      Vector3d z(u(rng), u(rng), u(rng));
+      if (std::abs(z.dot(x)) < 1e-6) continue;
+      z /= z.dot(x);
+      if (z.dot(seed[0]) <= 1.0 && z.dot(seed[1]) <= 1.0 && z.dot(seed[2]) <= 1.0) {
+        EXPECT_GE(z.norm(), y.norm() - 1e-9);
+      }
+    }
+  }
+  EXPECT_GT(solved, 50);
+  // A point inside the seed triangle cannot be separated with room to spare (only the plane of
+  // the triangle itself touches it).
+  const Vector3d tri[3] = {Vector3d(1, 0, 0), Vector3d(0, 1, 0), Vector3d(-1, -1, 0.5)};
+  Vector3d y;
+  EXPECT_FALSE(mmh::som::separatingPlane((tri[0] + tri[1] + tri[2]) / 3.0, tri, 3, &y, 1e-3));
+}
+
 TEST(PolytopeInflation, ExcludesEveryPointAndKeepsTheSeed) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-3.0, 3.0);
