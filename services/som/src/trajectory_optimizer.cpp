@@ -267,9 +267,31 @@ double TrajectoryOptimizer::corridorViolation(const Eigen::VectorXd& x) {
   return worst;
 }
 
+void TrajectoryOptimizer::sampledMaxima(const Trajectory& traj, double* speed, double* acc) {
+  // Dense samples are enough here: the verification computes the exact maxima afterwards.
+  constexpr int kSamples = 32;
+  double v2 = 0.0, a2 = 0.0;
+  for (const Piece& piece : traj.pieces()) {
+    const Eigen::Matrix<double, 3, kMaxPolyOrder>& c = piece.coeffs;
+    for (int j = 0; j <= kSamples; ++j) {
+      const double t = piece.duration * j / kSamples;
+      const Eigen::Vector3d v =
+          c.col(1) +
+          t * (2.0 * c.col(2) + t * (3.0 * c.col(3) + t * (4.0 * c.col(4) + t * 5.0 * c.col(5))));
+      const Eigen::Vector3d a =
+          2.0 * c.col(2) + t * (6.0 * c.col(3) + t * (12.0 * c.col(4) + t * 20.0 * c.col(5)));
+      v2 = std::max(v2, v.squaredNorm());
+      a2 = std::max(a2, a.squaredNorm());
+    }
+  }
+  *speed = std::sqrt(v2);
+  *acc = std::sqrt(a2);
+}
+
 double TrajectoryOptimizer::limitExcess(const Eigen::VectorXd& x) {
-  const Trajectory t = trajectoryAt(x);
-  return std::max(t.maxSpeed() / max_vel_, std::sqrt(t.maxAcceleration() / max_acc_));
+  double v, a;
+  sampledMaxima(trajectoryAt(x), &v, &a);
+  return std::max(v / max_vel_, std::sqrt(a / max_acc_));
 }
 
 bool TrajectoryOptimizer::optimize(OptimizerOutput* out) {
@@ -313,24 +335,27 @@ bool TrajectoryOptimizer::optimize(OptimizerOutput* out) {
   const int m = pieces_;
   points_ = Eigen::Map<const Eigen::Matrix3Xd>(x.data(), 3, m - 1);
   for (int i = 0; i < m; ++i) durations_[i] = durationFromTau(x[3 * (m - 1) + i]);
-  double stretch = 1.0;
-  double excess = std::max(traj.maxSpeed() / max_vel_, traj.maxAcceleration() / max_acc_);
+  double stretch = 1.0, v = 0.0, a = 0.0;
+  sampledMaxima(traj, &v, &a);
+  double excess = std::max(v / max_vel_, a / max_acc_);
   for (int pass = 0; pass < 8 && excess > 1.0 + params_.repair_tolerance; ++pass) {
     const double k =
-        std::max({traj.maxSpeed() / max_vel_, std::sqrt(traj.maxAcceleration() / max_acc_),
-                  1.0 + 0.5 * params_.repair_tolerance});
+        std::max({v / max_vel_, std::sqrt(a / max_acc_), 1.0 + 0.5 * params_.repair_tolerance});
     // A moving start fixes the first moments, so stretching does not always help: it is
     // bounded and kept only while it lowers the excess (the verification refuses the rest).
     if (stretch * k > params_.max_repair_stretch) break;
     minco_.setParameters(points_, durations_ * k);
     Trajectory longer = minco_.trajectory();
-    const double longer_excess =
-        std::max(longer.maxSpeed() / max_vel_, longer.maxAcceleration() / max_acc_);
+    double lv, la;
+    sampledMaxima(longer, &lv, &la);
+    const double longer_excess = std::max(lv / max_vel_, la / max_acc_);
     if (longer_excess >= excess) break;
     durations_ *= k;
     stretch *= k;
     traj = std::move(longer);
     excess = longer_excess;
+    v = lv;
+    a = la;
     ++out->repairs;
   }
   // The banded solve meets the start state to rounding; make it exact.

@@ -52,7 +52,7 @@ struct OptimizerParams {
   // of the limits.
   double repair_tolerance = 0.002;
   double max_repair_stretch = 4.0;   // at most this total time stretch
-  double rel_cost_tolerance = 1e-5;  // stop when the cost improves less than this (relative)
+  double rel_cost_tolerance = 1e-3;  // stop when the cost improves less than this (relative)
   int lbfgs_memory = 8;
   double first_step = 0.3;  // length of L-BFGS's first (steepest-descent) step in the variables
 };

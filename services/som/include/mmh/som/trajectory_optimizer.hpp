@@ -62,8 +62,10 @@ class TrajectoryOptimizer {
   double runNlopt(Eigen::VectorXd& x, int max_evaluations, int* result, std::string* message);
   // Worst distance outside its polytope over samples twice as dense as the penalty's.
   double corridorViolation(const Eigen::VectorXd& x);
-  // The time stretch the exact maxima at x call for: max(v / v_max, sqrt(a / a_max)).
+  // The time stretch the maxima at x call for: max(v / v_max, sqrt(a / a_max)).
   double limitExcess(const Eigen::VectorXd& x);
+  // Max speed and acceleration over 32 samples per piece.
+  static void sampledMaxima(const Trajectory& traj, double* speed, double* acc);
   double evaluate(const Eigen::VectorXd& x, Eigen::VectorXd* grad, double* control, double* time,
                   double* penalty);
 
