@@ -47,6 +47,7 @@ class BlockedMask {
     int sign;
   };
   mutable std::vector<FaceRow> faces_;  // scratch of pointsInside
+  mutable std::vector<uint8_t> row_;    // scratch of surfacePoints
 };
 
 // Convenience wrappers (one mask each).
