@@ -131,6 +131,7 @@ bool CorridorBuilder::build(const VoxelGrid& grid, const std::vector<Eigen::Vect
   const Eigen::Vector3d target = raw_path.back();
   InflationOptions inflation;
   inflation.iterations = params.iterations;
+  inflation.early_round_margin_m = params.early_round_margin_m;
   const double step = grid.resolution();
 
   std::vector<Polytope> polys;

@@ -30,6 +30,8 @@ SomParams loadSomParams(const Config& c) {
   CorridorParams& k = p.corridor;
   k.box_margin_m = optDouble(c, "som.corridor_box_margin_m", k.box_margin_m, 0.3, 20.0);
   k.box_margin_z_m = optDouble(c, "som.corridor_box_margin_z_m", k.box_margin_z_m, 0.2, 20.0);
+  k.early_round_margin_m =
+      optDouble(c, "som.corridor_early_round_margin_m", k.early_round_margin_m, 0.0, 20.0);
   k.seed_length_m = optDouble(c, "som.corridor_seed_length_m", k.seed_length_m, 0.2, 50.0);
   k.iterations = optInt(c, "som.corridor_iterations", k.iterations, 1, 10);
   k.overlap_backoff_m =

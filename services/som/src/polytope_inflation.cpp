@@ -153,11 +153,31 @@ bool PolytopeInflator::inflate(const std::vector<Eigen::Vector3d>& points,
     const Eigen::Vector3d e = ab / len;
     metric.shape += (std::max(0.5 * len, r) - r) * e * e.transpose();
   }
+  // The rounds before the last only shape the metric: they may look at a smaller box around
+  // the seed (fewer points, fewer faces for the ellipsoid step).
+  Eigen::Vector3d seed_lo = seed.front(), seed_hi = seed.front();
+  for (const Eigen::Vector3d& p : seed) {
+    seed_lo = seed_lo.cwiseMin(p);
+    seed_hi = seed_hi.cwiseMax(p);
+  }
+  const Eigen::Vector3d inner_lo = (seed_lo.array() - options.early_round_margin_m).max(lo.array());
+  const Eigen::Vector3d inner_hi = (seed_hi.array() + options.early_round_margin_m).min(hi.array());
+  const bool shrink_early = options.early_round_margin_m > 0.0;
+  if (shrink_early && options.iterations > 1) {
+    inner_points_.clear();
+    for (const Eigen::Vector3d& p : points)
+      if ((p.array() >= inner_lo.array()).all() && (p.array() <= inner_hi.array()).all())
+        inner_points_.push_back(p);
+  }
   for (int round = 0; round < options.iterations; ++round) {
+    const bool last = round + 1 == options.iterations;
+    const bool inner = shrink_early && !last;
     Polytope candidate;
     // A hair inside the box, so that cell centres on its faces are strictly outside.
-    candidate.addBox(lo.array() + kBoxInset, hi.array() - kBoxInset);
-    if (!exclude(points, metric, seed, options.plane_offset_m, &candidate)) return false;
+    candidate.addBox((inner ? inner_lo : lo).array() + kBoxInset,
+                     (inner ? inner_hi : hi).array() - kBoxInset);
+    if (!exclude(inner ? inner_points_ : points, metric, seed, options.plane_offset_m, &candidate))
+      return false;
     *poly = std::move(candidate);
     *ellipsoid = metric;
     if (round + 1 == options.iterations) break;

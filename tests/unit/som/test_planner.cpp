@@ -43,9 +43,10 @@ void expectVerified(const som_test::World& w, const mmh::KinematicState& start,
     EXPECT_LE(p.z(), 2.7 + 0.02);
   }
   EXPECT_EQ(outside, 0);
-  // Flight time is within reach of the rest-to-rest bound on the planned path.
+  // Flight time is within reach of the rest-to-rest bound on the planned path (which ignores
+  // the turns: the S-bend needs about 1.5 times it).
   const double bound = mmh::som::restToRestTimeBound(mmh::pathLength(out.path), v_max, a_max);
-  EXPECT_LT(t.duration(), 1.6 * bound);
+  EXPECT_LT(t.duration(), 1.8 * bound);
   EXPECT_GT(t.duration(),
             0.8 * mmh::som::restToRestTimeBound((w.target - start.position).norm(), v_max, a_max));
   const auto& tm = out.timings;

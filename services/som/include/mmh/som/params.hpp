@@ -13,12 +13,14 @@ namespace mmh::som {
 struct CorridorParams {
   // Obstacle points are taken from a box around each seed segment, this much larger on every
   // side; it also bounds the polytope.
-  double box_margin_m = 1.2;
+  double box_margin_m = 1.0;
   double box_margin_z_m = 0.5;  // vertically
   // Longest seed segment (a sub-segment of the shortened A* path) one polytope is grown around.
   double seed_length_m = 3.0;
   // Hyperplane rounds; an inscribed-ellipsoid step runs between two rounds (FIRI).
   int iterations = 2;
+  // Rounds before the last look only this far around the seed (0: the whole box).
+  double early_round_margin_m = 0.6;
   // The next polytope's seed starts this far back along the path from where the path leaves the
   // current polytope, so that consecutive polytopes overlap by a usable amount.
   double overlap_backoff_m = 0.5;

@@ -17,6 +17,9 @@ struct InflationOptions {
   int iterations = 2;  // hyperplane rounds; an ellipsoid step runs between two rounds
   InscribedEllipsoidOptions ellipsoid;
   double plane_offset_m = 1e-6;  // every excluded point ends up this far outside its face
+  // > 0: rounds before the last use only the points (and the box) within this distance of the
+  // seed's bounding box; they only shape the ellipsoid for the last round.
+  double early_round_margin_m = 0.0;
 };
 
 // The seed of a polytope: one to three points whose convex hull (a point, a segment, a
@@ -47,6 +50,7 @@ class PolytopeInflator {
 
  private:
   std::vector<double> xs_, ys_, zs_, dist2_;
+  std::vector<Eigen::Vector3d> inner_points_;
 };
 
 }  // namespace mmh::som
