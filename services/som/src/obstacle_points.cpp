@@ -62,22 +62,24 @@ bool BlockedMask::build(const VoxelGrid& grid, const Eigen::Vector3d& lo, const 
 
 void BlockedMask::surfacePoints(std::vector<Eigen::Vector3d>* out) const {
   out->clear();
-  row_.resize(n_.x() + 2);
-  uint8_t* surface = row_.data();
-  for (int z = 1; z <= n_.z(); ++z) {
-    for (int y = 1; y <= n_.y(); ++y) {
-      const uint8_t* c = &mask_[z * sz_ + y * sy_];
-      const uint8_t *xm = c - 1, *xp = c + 1, *ym = c - sy_, *yp = c + sy_, *zm = c - sz_,
-                    *zp = c + sz_;
+  const int nx = n_.x(), ny = n_.y(), nz = n_.z();
+  const int64_t sy = sy_, sz = sz_;
+  row_.resize(nx + 2);
+  uint8_t* __restrict surface = row_.data();
+  for (int z = 1; z <= nz; ++z) {
+    for (int y = 1; y <= ny; ++y) {
+      const uint8_t* __restrict c = &mask_[z * sz + y * sy];
       // Blocked with a free 6-neighbour, as bytes over the whole row (vectorised) ...
       uint8_t any = 0;
-      for (int x = 1; x <= n_.x(); ++x) {
-        surface[x] = c[x] & ~(xm[x] & xp[x] & ym[x] & yp[x] & zm[x] & zp[x]);
-        any |= surface[x];
+      for (int x = 1; x <= nx; ++x) {
+        const uint8_t s =
+            c[x] & ~(c[x - 1] & c[x + 1] & c[x - sy] & c[x + sy] & c[x - sz] & c[x + sz]);
+        surface[x] = s;
+        any |= s;
       }
       if (!any) continue;
       // ... then the few set cells become points.
-      for (int x = 1; x <= n_.x(); ++x)
+      for (int x = 1; x <= nx; ++x)
         if (surface[x] & 1) out->push_back(centerOf(x - 1, y - 1, z - 1));
     }
   }
