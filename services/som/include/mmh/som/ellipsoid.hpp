@@ -23,7 +23,7 @@ struct InscribedEllipsoidOptions {
   // result's log det is within about (number of faces) x mu_final of the true maximum.
   double barrier_start = 1e-2;
   double barrier_final = 1e-2;  // a ~90 % ellipsoid is plenty for the metric of the next round
-  int max_newton_steps = 10;    // per stage
+  int max_newton_steps = 6;     // per stage
   double newton_tolerance = 1e-7;
 };
 
