@@ -80,18 +80,15 @@ AStarResult GridAStar::search(const VoxelGrid& grid, const Eigen::Vector3d& star
   }
 
   const int64_t n = grid.numCells();
-  if (static_cast<int64_t>(stamp_.size()) != n) {
-    g_cost_.assign(n, 0.f);
-    parent_.assign(n, -1);
-    stamp_.assign(n, 0);
+  if (static_cast<int64_t>(cells_.size()) != n) {
+    cells_.assign(n, CellState{});
     generation_ = 0;
   }
   if (++generation_ >= kClosedBit) {
-    std::fill(stamp_.begin(), stamp_.end(), 0);
+    for (CellState& c : cells_) c.stamp = 0;
     generation_ = 1;
   }
-  auto seen = [&](int64_t i) { return (stamp_[i] & ~kClosedBit) == generation_; };
-  auto closed = [&](int64_t i) { return stamp_[i] == (generation_ | kClosedBit); };
+  auto closed = [&](int64_t i) { return cells_[i].stamp == (generation_ | kClosedBit); };
 
   // Slight tie-breaking towards the goal keeps the search from fanning out on plateaus.
   const double h_weight = std::max(1.0, options.heuristic_weight) * (1.0 + 1e-3);
@@ -103,9 +100,7 @@ AStarResult GridAStar::search(const VoxelGrid& grid, const Eigen::Vector3d& star
     open.push_back({f, static_cast<int32_t>(index)});
     std::push_heap(open.begin(), open.end(), heap_order);
   };
-  stamp_[s_idx] = generation_;
-  g_cost_[s_idx] = 0.f;
-  parent_[s_idx] = -1;
+  cells_[s_idx] = {0.f, -1, generation_};
   push(static_cast<float>(h_weight * octileDistance(s, g)), s_idx);
 
   // The 26 neighbour offsets with their step lengths.
@@ -132,7 +127,7 @@ AStarResult GridAStar::search(const VoxelGrid& grid, const Eigen::Vector3d& star
     open.pop_back();
     const int64_t cur = top.index;
     if (closed(cur)) continue;
-    stamp_[cur] = generation_ | kClosedBit;
+    cells_[cur].stamp = generation_ | kClosedBit;
     if (cur == g_idx) {
       found = true;
       break;
@@ -142,17 +137,16 @@ AStarResult GridAStar::search(const VoxelGrid& grid, const Eigen::Vector3d& star
       return result;
     }
     const Eigen::Vector3i c = grid.localFromLinear(cur);
-    const float gc = g_cost_[cur];
+    const float gc = cells_[cur].g;
     for (const Neighbour& n : neighbours) {
       const Eigen::Vector3i nb = c + n.d;
       if (!in_bounds(nb)) continue;
       const int64_t ni = cur + n.delta;
       if (closed(ni) || !traversable(nb, ni)) continue;
       const float ng = gc + n.step;
-      if (seen(ni) && g_cost_[ni] <= ng) continue;
-      stamp_[ni] = generation_;
-      g_cost_[ni] = ng;
-      parent_[ni] = static_cast<int32_t>(cur);
+      CellState& cell = cells_[ni];
+      if ((cell.stamp & ~kClosedBit) == generation_ && cell.g <= ng) continue;
+      cell = {ng, static_cast<int32_t>(cur), generation_};
       push(static_cast<float>(ng + h_weight * octileDistance(nb, g)), ni);
     }
   }
@@ -161,7 +155,7 @@ AStarResult GridAStar::search(const VoxelGrid& grid, const Eigen::Vector3d& star
     return result;
   }
   std::vector<Eigen::Vector3d> reversed;
-  for (int64_t i = g_idx; i >= 0; i = parent_[i]) {
+  for (int64_t i = g_idx; i >= 0; i = cells_[i].parent) {
     reversed.push_back(grid.centerOfLocal(grid.localFromLinear(i)));
     if (i == s_idx) break;
   }

@@ -41,10 +41,14 @@ class GridAStar {
                      const Eigen::Vector3d& goal, const AStarOptions& options = {});
 
  private:
-  // Per-cell search state, reused across searches (a generation stamp marks stale entries).
-  std::vector<float> g_cost_;
-  std::vector<int32_t> parent_;
-  std::vector<uint32_t> stamp_;
+  // Per-cell search state in one record (one cache line per neighbour visited), reused across
+  // searches (a generation stamp marks stale entries).
+  struct CellState {
+    float g = 0.f;
+    int32_t parent = -1;
+    uint32_t stamp = 0;
+  };
+  std::vector<CellState> cells_;
   uint32_t generation_ = 0;
   struct OpenEntry {
     float f;
