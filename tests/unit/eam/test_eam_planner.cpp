@@ -4,11 +4,13 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "eam_test_grids.hpp"
 #include "mmh/common/config.hpp"
 #include "mmh/eam/initial_guess.hpp"
 #include "mmh/eam/planner.hpp"
+#include "mmh/eam/uniform_bspline.hpp"
 #include "mmh/eam/verification.hpp"
 
 using Eigen::Vector3d;
@@ -256,5 +258,29 @@ TEST(EamParams, DefaultsLoadAndBadValuesNameTheKey) {
     FAIL() << "no error";
   } catch (const mmh::ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("eam.knot_span_s"), std::string::npos) << e.what();
+  }
+}
+
+TEST(EamVerification, ExactMaximaAgreeWithTheGeneralRoutine) {
+  const mmh::VoxelGrid empty = eam_test::freeGrid();
+  auto p = params();
+  p.limit_tolerance_ratio = 100.0;  // only the maxima are of interest here
+  std::mt19937_64 rng(21);
+  std::normal_distribution<double> n(0.0, 0.3);
+  for (int trial = 0; trial < 10; ++trial) {
+    mmh::KinematicState s;
+    s.position = Vector3d(0.5, 0.0, 1.2);
+    s.velocity = Vector3d(n(rng), n(rng), 0.0);
+    const double dt = 0.15 + 0.05 * trial;
+    Eigen::Matrix3Xd q(3, 16);
+    q.leftCols(3) = mmh::eam::UniformBspline::startControlPoints(s, dt);
+    for (int i = 3; i < 13; ++i) q.col(i) = Vector3d(0.5 + 0.6 * i, n(rng), 1.2 + 0.2 * n(rng));
+    const Vector3d target(9.0, 0.0, 1.2);
+    for (int i = 13; i < 16; ++i) q.col(i) = target;
+    const mmh::Trajectory t = mmh::eam::UniformBspline(q, dt).toTrajectory();
+    const mmh::eam::Verification v = mmh::eam::verifyTrajectory(t, empty, s, target, p);
+    ASSERT_TRUE(v.ok) << v.why;
+    EXPECT_NEAR(v.max_speed, t.maxSpeed(), 1e-9 * (1.0 + v.max_speed));
+    EXPECT_NEAR(v.max_acc, t.maxAcceleration(), 1e-9 * (1.0 + v.max_acc));
   }
 }

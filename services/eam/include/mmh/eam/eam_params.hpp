@@ -48,7 +48,10 @@ struct EamParams {
   double merge_gap_s = 2.0;
   // Collision-check / pair-generation rounds (the first included) and time re-allocations.
   int max_rebound_rounds = 6;
-  int max_refine_rounds = 3;
+  int max_refine_rounds = 5;
+  // Restarts when the rounds run out with collisions: from the guess again, with one A* guide
+  // around all the collisions at once that avoids slots.
+  int max_restarts = 1;
   // L-BFGS evaluations per optimisation, and its relative stopping tolerance on the cost.
   int max_iterations = 200;
   double optimizer_ftol_rel = 1e-3;
@@ -62,8 +65,11 @@ struct EamParams {
   // again with this extra cost (in voxels) per step through a slot cell.
   double astar_slot_width_m = 0.4;
   double astar_slot_cost = 10.0;
-  // A* first searches within this height of the colliding stretch, then the whole band.
-  double astar_slab_margin_m = 0.05;
+  // A* first searches the voxel layers the colliding stretch occupies, widened by this, then
+  // the whole geofence band.
+  double astar_slab_margin_m = 0.0;
+  // ... and the box around the stretch's end points widened by this (horizontally).
+  double astar_box_margin_m = 3.0;
   double start_escape_radius_m = 0.3;
 };
 
