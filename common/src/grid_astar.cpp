@@ -101,7 +101,7 @@ AStarResult GridAStar::search(const VoxelGrid& grid, const Eigen::Vector3d& star
   auto closed = [&](int64_t i) { return stamp_[i] == (generation_ | kClosedBit); };
 
   // Slight tie-breaking towards the goal keeps the search from fanning out on plateaus.
-  const double h_weight = 1.0 + 1e-3;
+  const double h_weight = std::max(1.0 + 1e-3, options.heuristic_weight);
   std::priority_queue<OpenEntry, std::vector<OpenEntry>, std::greater<OpenEntry>> open;
   stamp_[s_idx] = generation_;
   g_cost_[s_idx] = 0.f;

@@ -31,6 +31,7 @@ EamParams loadEamParams(const Config& config) {
   p.astar_max_expansions = config.getInt("eam.astar_max_expansions", 1000, 100000000);
   p.astar_slot_width_m = config.getDouble("eam.astar_slot_width_m", 0.0, 5.0);
   p.astar_slot_cost = config.getDouble("eam.astar_slot_cost", 0.0, 1000.0);
+  p.astar_heuristic_weight = config.getDouble("eam.astar_heuristic_weight", 1.0, 10.0);
   p.astar_box_margin_m = config.getDouble("eam.astar_box_margin_m", 0.1, 1000.0);
   p.astar_slab_margin_m = config.getDouble("eam.astar_slab_margin_m", 0.0, 100.0);
   p.start_escape_radius_m = config.getDouble("eam.start_escape_radius_m", 0.0, 2.0);

@@ -24,13 +24,14 @@ bool inSlot(const VoxelGrid& grid, const Eigen::Vector3i& c, int reach, int diag
 
 AStarResult GuideSearch::find(const VoxelGrid& grid, const Eigen::Vector3d& from,
                               const Eigen::Vector3d& goal, double z_lo, double z_hi,
-                              bool avoid_slots, GuideStats* stats) {
+                              bool avoid_slots, double slot_width_m, GuideStats* stats) {
   const EamParams& P = params_;
   AStarOptions band;
   band.max_expansions = P.astar_max_expansions;
   band.min_bound = P.geofence_min;
   band.max_bound = P.geofence_max;
   band.start_escape_radius_m = P.start_escape_radius_m;
+  band.heuristic_weight = P.astar_heuristic_weight;
   // First the voxel layers the stretch occupies (a detour around a new obstacle is almost
   // always sideways, and a thin slab keeps A* from fanning out over every layer) within a box
   // around it (a blocked way does not send the search over the whole window); then the band.
@@ -45,9 +46,9 @@ AStarResult GuideSearch::find(const VoxelGrid& grid, const Eigen::Vector3d& from
   slab.min_bound.z() = std::max(P.geofence_min.z(), layer_lo - P.astar_slab_margin_m);
   slab.max_bound.z() = std::min(P.geofence_max.z(), layer_hi + P.astar_slab_margin_m);
 
-  const int reach = std::max(1, static_cast<int>(std::lround(P.astar_slot_width_m / res)));
+  const int reach = std::max(1, static_cast<int>(std::lround(slot_width_m / res)));
   const int diag_reach =
-      std::max(1, static_cast<int>(std::lround(P.astar_slot_width_m / (std::sqrt(2.0) * res))));
+      std::max(1, static_cast<int>(std::lround(slot_width_m / (std::sqrt(2.0) * res))));
   auto slot_cost = [&](const Eigen::Vector3i& c, int64_t idx) {
     int8_t& m = slot_memo_[idx];
     if (m == 0) {
@@ -76,6 +77,13 @@ AStarResult GuideSearch::find(const VoxelGrid& grid, const Eigen::Vector3d& from
   const bool slot_cost_first = avoid_slots && P.astar_slot_cost > 0.0;
   bool in_slab = true;
   AStarResult path = search(slab, slot_cost_first);
+  if (!path.ok() && path.status != AStarResult::Status::kOutOfWindow) {
+    // No way within the box: the same layers over the whole window (a long detour stays cheap
+    // in a thin slab), and only then every layer of the band.
+    slab.min_bound.head<2>() = band.min_bound.head<2>();
+    slab.max_bound.head<2>() = band.max_bound.head<2>();
+    path = search(slab, slot_cost_first);
+  }
   if (!path.ok() && path.status != AStarResult::Status::kOutOfWindow) {
     in_slab = false;
     path = search(band, slot_cost_first);

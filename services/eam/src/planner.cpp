@@ -124,6 +124,28 @@ struct Planner::Attempt {
   bool restart = false;         // first round: one guide for all collisions, slots avoided
 };
 
+namespace {
+
+// Nothing pushes the free control points vertically: every anchor pair repels horizontally
+// (vertical obstacles, the common case) and the points keep clear of the geofence's floor and
+// ceiling. The altitude profile of the guess is then kept and only x and y are optimised, a
+// third fewer variables (the jerk energy is separable per axis, so z stays as smooth as the
+// guess was).
+bool horizontalProblem(const PairSet& pairs, const Eigen::Matrix3Xd& q,
+                       const std::vector<int>& free_points, const EamParams& p) {
+  constexpr double kFlat = 1e-3;
+  for (int i : free_points) {
+    for (const AnchorPair& pair : pairs[i]) {
+      if (std::abs(pair.v.z()) > kFlat) return false;
+    }
+    const double z = q(2, i);
+    if (z < p.geofence_min.z() + 0.05 || z > p.geofence_max.z() - 0.05) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 const char* toString(FailReason reason) {
   switch (reason) {
     case FailReason::kNone:
@@ -220,7 +242,11 @@ Planner::RoundsOutcome Planner::runRounds(const VoxelGrid& grid, const PlanReque
     // A restart takes one guide around all collisions at once, avoiding slots from the start.
     const std::vector<CollisionStretch> groups =
         mergeStretches(stretches, at.restart && at.round == 0 ? 1e9 : P.merge_gap_s);
+    // A restart wants a different, roomier way: slots avoided from the first search and twice
+    // as wide, and twice the clearance from the anchor planes.
     const bool avoid_slots = at.restart && at.round == 0;
+    const double slot_width = (at.restart ? 2.0 : 1.0) * P.astar_slot_width_m;
+    const double clearance = (at.restart ? 2.0 : 1.0) * P.clearance_m;
     int added = 0;
     for (const CollisionStretch& s : groups) {
       const Eigen::Vector3d goal = s.after.cwiseMax(P.geofence_min).cwiseMin(P.geofence_max);
@@ -231,7 +257,7 @@ Planner::RoundsOutcome Planner::runRounds(const VoxelGrid& grid, const PlanReque
         z_hi = std::max(z_hi, b.point.z());
       }
       const AStarResult path =
-          guides_.find(grid, from, goal, z_lo, z_hi, avoid_slots, &guide_stats);
+          guides_.find(grid, from, goal, z_lo, z_hi, avoid_slots, slot_width, &guide_stats);
       if (!path.ok()) {
         if (at.round == 0 && !at.restart) {
           outcome = RoundsOutcome::kNoPath;
@@ -246,8 +272,8 @@ Planner::RoundsOutcome Planner::runRounds(const VoxelGrid& grid, const PlanReque
       if (at.round == 0 && P.guide_warm_start) {
         warmStartFromGuide(path.path, s.t_before, s.t_after, kFirstFree, last_free, at.spline);
       }
-      added += addAnchorPairs(s, path.path, at.spline, grid, kFirstFree, last_free, P.clearance_m,
-                              at.pairs);
+      added +=
+          addAnchorPairs(s, path.path, at.spline, grid, kFirstFree, last_free, clearance, at.pairs);
       r.guide_paths.push_back(path.path);
       const int margin = static_cast<int>(std::ceil(P.window_margin_s / at.spline.knotSpan()));
       const int lo = std::max(kFirstFree, s.blocked.front().segment - margin);
@@ -268,9 +294,11 @@ Planner::RoundsOutcome Planner::runRounds(const VoxelGrid& grid, const PlanReque
     w.feasibility = P.lambda_feasibility;
     r.weights = w;
     const BsplineCost cost(settings, w, &at.pairs);
+    const bool keep_altitude =
+        horizontalProblem(at.pairs, at.spline.controlPoints(), free_points, P);
     const OptimizeResult opt = timed(&r.stats.optimize_us, [&] {
       return optimizeControlPoints(at.spline, cost, free_points, P.max_iterations,
-                                   P.optimizer_ftol_rel);
+                                   P.optimizer_ftol_rel, keep_altitude);
     });
     ++at.round;
     ++r.stats.rounds;
@@ -287,7 +315,8 @@ Planner::RoundsOutcome Planner::runRounds(const VoxelGrid& grid, const PlanReque
              std::to_string(at.spline.knotSpan()) + (r.narrow ? ", narrow" : ", open") +
              ", evals " + std::to_string(opt.evaluations) + ", Js " +
              std::to_string(opt.terms.smooth) + ", Jc " + std::to_string(opt.terms.collision) +
-             ", Jf " + std::to_string(opt.terms.feasibility) + " " + opt.error);
+             ", Jf " + std::to_string(opt.terms.feasibility) + (keep_altitude ? ", xy" : ", xyz") +
+             " " + opt.error);
     }
   }
   r.stats.astar_calls += guide_stats.calls;

@@ -60,6 +60,9 @@ struct EamParams {
   double limit_tolerance_ratio = 0.05;
   // A* budget and the radius around a start inside the inflated margin that may be crossed.
   int astar_max_expansions = 200000;
+  // Weighted A*: a guide need not be the shortest path, and a weight above 1 saves most of the
+  // expansions (the slot cost makes the plain octile heuristic weak).
+  double astar_heuristic_weight = 1.5;
   // A guide cell is in a slot when inflated obstacles lie within this distance on both sides
   // (along x, y, z or a horizontal diagonal). When the shortest guide threads a slot, A* runs
   // again with this extra cost (in voxels) per step through a slot cell.

@@ -30,9 +30,11 @@ class GuideSearch {
 
   // Path from `from` to `goal` (free points of the curve around a stretch whose altitude spans
   // [z_lo, z_hi]). avoid_slots: use the slot cost from the start rather than only when the
-  // shortest path threads a slot.
+  // shortest path threads a slot; slot_width_m: what counts as a slot (astar_slot_width_m
+  // normally).
   AStarResult find(const VoxelGrid& grid, const Eigen::Vector3d& from, const Eigen::Vector3d& goal,
-                   double z_lo, double z_hi, bool avoid_slots, GuideStats* stats);
+                   double z_lo, double z_hi, bool avoid_slots, double slot_width_m,
+                   GuideStats* stats);
 
  private:
   EamParams params_;
