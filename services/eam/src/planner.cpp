@@ -26,7 +26,7 @@ constexpr double kRefineMargin = 1.01;
 constexpr double kRefineWhileColliding = 1.1;
 // Sample spacing (in voxels) of the collision check: a quarter voxel like the verification,
 // and a tenth after the verification found a graze the coarser check missed.
-constexpr double kCheckStep = 0.25;
+constexpr double kCheckStep = 0.5;
 constexpr double kFineCheckStep = 0.1;
 // Collision weight multiplier when collisions remain but no new pair could be made.
 constexpr double kCollisionBoost = 4.0;

@@ -32,6 +32,10 @@ class GuideSearch {
   // [z_lo, z_hi]). avoid_slots: use the slot cost from the start rather than only when the
   // shortest path threads a slot; slot_width_m: what counts as a slot (astar_slot_width_m
   // normally).
+  // Sizes the per-cell arrays for this grid now (tens of MB for a full window), so that the
+  // first request after a new map does not pay for it.
+  void prepare(const VoxelGrid& grid);
+
   AStarResult find(const VoxelGrid& grid, const Eigen::Vector3d& from, const Eigen::Vector3d& goal,
                    double z_lo, double z_hi, bool avoid_slots, double slot_width_m,
                    GuideStats* stats);

@@ -75,6 +75,8 @@ class Planner {
  public:
   explicit Planner(const EamParams& params) : params_(params), guides_(params) {}
   PlanResult plan(const VoxelGrid& grid, const PlanRequest& request);
+  // Allocates what a plan on this grid needs (call when a map of a new size arrives).
+  void prepare(const VoxelGrid& grid) { guides_.prepare(grid); }
   const EamParams& params() const { return params_; }
   // Receives one line per round (collisions, pairs, weights, cost) when set; for debugging.
   void setTrace(std::function<void(const std::string&)> trace) { trace_ = std::move(trace); }
