@@ -7,17 +7,26 @@
 namespace mmh::eam {
 
 bool inSlot(const VoxelGrid& grid, const Eigen::Vector3i& c, int reach, int diag_reach) {
+  // Walks linear indices (this runs for every cell A* touches when slots cost extra).
+  const Eigen::Vector3i& size = grid.size();
+  const int64_t sx = 1, sy = size.x(), sz = static_cast<int64_t>(size.x()) * size.y();
   const int axes[5][4] = {{1, 0, 0, reach},
                           {0, 1, 0, reach},
                           {0, 0, 1, reach},
                           {1, 1, 0, diag_reach},
                           {1, -1, 0, diag_reach}};
+  if (!grid.inWindow(c)) return false;
+  const int64_t base = grid.linearIndex(c);
+  auto blocked_along = [&](const int* a, int sign) {
+    for (int k = 1; k <= a[3]; ++k) {
+      const Eigen::Vector3i n = c + sign * k * Eigen::Vector3i(a[0], a[1], a[2]);
+      if (!grid.inWindow(n)) return false;  // unknown beyond the window: free
+      if (grid.isBlockedLinear(base + sign * k * (a[0] * sx + a[1] * sy + a[2] * sz))) return true;
+    }
+    return false;
+  };
   for (const auto& a : axes) {
-    const Eigen::Vector3i d(a[0], a[1], a[2]);
-    bool plus = false, minus = false;
-    for (int k = 1; k <= a[3] && !plus; ++k) plus = grid.isBlocked(c + k * d);
-    for (int k = 1; k <= a[3] && !minus; ++k) minus = grid.isBlocked(c - k * d);
-    if (plus && minus) return true;
+    if (blocked_along(a, +1) && blocked_along(a, -1)) return true;
   }
   return false;
 }

@@ -58,6 +58,17 @@ void reallocateTime(UniformBspline& spline, double ratio, const KinematicState& 
   spline.controlPoints().leftCols(3) = UniformBspline::startControlPoints(start, spline.knotSpan());
 }
 
+// Integral of |jerk|^2 over pieces of degree <= 3 (jerk 6 c3, constant per piece); exact. The
+// general routine of Trajectory builds polynomial products and costs far more.
+double cubicJerkEnergy(const Trajectory& traj) {
+  double e = 0.0;
+  for (const Piece& p : traj.pieces()) {
+    if (!p.coeffs.rightCols(kMaxPolyOrder - 4).isZero(0.0)) return traj.jerkEnergy();
+    e += 36.0 * p.coeffs.col(3).squaredNorm() * p.duration;
+  }
+  return e;
+}
+
 // Runs f and adds its wall-clock time (us) to *acc: measurement only, never a decision.
 template <class F>
 auto timed(double* acc, F&& f) {
@@ -181,7 +192,15 @@ void bsplineMaxima(const UniformBspline& spline, double* max_speed, double* max_
   for (int i = 0; i + 2 < q.cols(); ++i) {
     a2 = std::max(a2, (q.col(i + 2) - 2.0 * q.col(i + 1) + q.col(i)).squaredNorm());
   }
+  // The velocity of interval i is a quadratic B-spline with control points (Q_{k+1} - Q_k)/dt,
+  // k = i..i+2, and lies in their convex hull: an interval whose control velocities are all
+  // slower than the fastest speed found so far cannot hold the maximum and is skipped.
+  std::vector<double> cv2(q.cols() > 1 ? q.cols() - 1 : 0);
+  for (int k = 0; k + 1 < q.cols(); ++k) cv2[k] = (q.col(k + 1) - q.col(k)).squaredNorm();
+  const double inv_dt2 = 1.0 / (dt * dt);
   for (int i = 0; i + 3 < q.cols(); ++i) {
+    const double bound = std::max({cv2[i], cv2[i + 1], cv2[i + 2]}) * inv_dt2;
+    if (bound <= v2) continue;
     // v(t) = b0 + b1 t + b2 t^2 on [0, dt]; stationary points of |v|^2 solve v . v' = 0.
     const Eigen::Vector3d b0 = (q.col(i + 2) - q.col(i)) / (2.0 * dt);
     const Eigen::Vector3d b1 = (q.col(i) - 2.0 * q.col(i + 1) + q.col(i + 2)) / (dt * dt);
@@ -248,6 +267,11 @@ Planner::RoundsOutcome Planner::runRounds(const VoxelGrid& grid, const PlanReque
     const double slot_width = (at.restart ? 2.0 : 1.0) * P.astar_slot_width_m;
     const double clearance = (at.restart ? 2.0 : 1.0) * P.clearance_m;
     int added = 0;
+    struct GuideSpan {
+      double t0, t1;
+      size_t index;  // into r.guide_paths
+    };
+    std::vector<GuideSpan> round_guides;
     for (const CollisionStretch& s : groups) {
       const Eigen::Vector3d goal = s.after.cwiseMax(P.geofence_min).cwiseMin(P.geofence_max);
       const Eigen::Vector3d from = s.before.cwiseMax(P.geofence_min).cwiseMin(P.geofence_max);
@@ -275,12 +299,27 @@ Planner::RoundsOutcome Planner::runRounds(const VoxelGrid& grid, const PlanReque
       added +=
           addAnchorPairs(s, path.path, at.spline, grid, kFirstFree, last_free, clearance, at.pairs);
       r.guide_paths.push_back(path.path);
+      round_guides.push_back({s.t_before, s.t_after, r.guide_paths.size() - 1});
       const int margin = static_cast<int>(std::ceil(P.window_margin_s / at.spline.knotSpan()));
       const int lo = std::max(kFirstFree, s.blocked.front().segment - margin);
       const int hi = std::min(last_free, s.blocked.back().segment + 3 + margin);
       for (int i = lo; i <= hi; ++i) at.free_mask[i] = 1;
     }
     if (outcome == RoundsOutcome::kNoPath) break;
+    if (at.round == 0 && P.guide_warm_start && !round_guides.empty()) {
+      // The curve through the warm-started control points cuts the corners of the guide, which
+      // hugs the obstacles: give those grazes their pairs now (from the same guides) rather
+      // than in another round.
+      for (const CollisionStretch& g :
+           findCollisionStretches(at.spline, grid, P.start_escape_radius_m, at.check_step)) {
+        for (const GuideSpan& span : round_guides) {
+          if (g.blocked.back().t < span.t0 || g.blocked.front().t > span.t1) continue;
+          added += addAnchorPairs(g, r.guide_paths[span.index], at.spline, grid, kFirstFree,
+                                  last_free, clearance, at.pairs);
+          break;
+        }
+      }
+    }
     if (added == 0 && at.round > 0) at.boost *= kCollisionBoost;
     std::vector<int> free_points;
     for (int i = kFirstFree; i <= last_free; ++i) {
@@ -392,7 +431,7 @@ PlanResult Planner::plan(const VoxelGrid& grid, const PlanRequest& req) {
       r.stats.max_acc = v.max_acc;
       if (v.ok) {
         for (const auto& list : at.pairs) r.stats.pairs += static_cast<int>(list.size());
-        r.jerk_energy = traj.jerkEnergy();
+        r.jerk_energy = cubicJerkEnergy(traj);
         r.trajectory = std::move(traj);
         r.ok = true;
         r.reason = FailReason::kNone;

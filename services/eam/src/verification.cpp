@@ -80,10 +80,15 @@ Verification verifyTrajectory(const Trajectory& traj, const VoxelGrid& grid,
   bool escaping = true;
   double t0 = 0.0;
   for (const Piece& piece : traj.pieces()) {
+    // Pieces of degree <= 3 (EAM's) are evaluated with their four coefficients only.
+    const bool cubic = piece.coeffs.rightCols(kMaxPolyOrder - 4).isZero(0.0);
+    const Eigen::Vector3d c0 = piece.coeffs.col(0), c1 = piece.coeffs.col(1),
+                          c2 = piece.coeffs.col(2), c3 = piece.coeffs.col(3);
     const int n = std::max(1, static_cast<int>(std::ceil(piece.duration / dt)));
     for (int k = 0; k <= n; ++k) {
       const double tl = piece.duration * k / n;
-      const Eigen::Vector3d p = piece.position(tl);
+      const Eigen::Vector3d p =
+          cubic ? Eigen::Vector3d(c0 + tl * (c1 + tl * (c2 + tl * c3))) : piece.position(tl);
       const Eigen::Vector3i cell = grid.localIndexOf(p);
       const bool in_window = grid.inWindow(cell);  // outside: unknown, i.e. free
       const int64_t idx = in_window ? grid.linearIndex(cell) : 0;

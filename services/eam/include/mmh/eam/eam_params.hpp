@@ -66,7 +66,7 @@ struct EamParams {
   // A guide cell is in a slot when inflated obstacles lie within this distance on both sides
   // (along x, y, z or a horizontal diagonal). When the shortest guide threads a slot, A* runs
   // again with this extra cost (in voxels) per step through a slot cell.
-  double astar_slot_width_m = 0.4;
+  double astar_slot_width_m = 0.3;
   double astar_slot_cost = 10.0;
   // A* first searches the voxel layers the colliding stretch occupies, widened by this, then
   // the whole geofence band.
