@@ -42,24 +42,28 @@ class SmoothnessPreconditioner {
         }
       }
     }
+    inv_diag_.resize(n);
+    for (int i = 0; i < n; ++i) inv_diag_[i] = 1.0 / at(i, i);
   }
   // z = L^{-T} y (back substitution), per axis: y and z hold `axes` values per point.
   void applyInverseTransposed(const double* y, double* z, int axes) const {
     for (int i = n_ - 1; i >= 0; --i) {
+      const int kmax = std::min(n_ - 1, i + kBand);
       for (int a = 0; a < axes; ++a) {
         double s = y[axes * i + a];
-        for (int k = i + 1; k <= std::min(n_ - 1, i + kBand); ++k) s -= at(k, i) * z[axes * k + a];
-        z[axes * i + a] = s / at(i, i);
+        for (int k = i + 1; k <= kmax; ++k) s -= at(k, i) * z[axes * k + a];
+        z[axes * i + a] = s * inv_diag_[i];
       }
     }
   }
   // w = L^{-1} g (forward substitution), per axis.
   void applyInverse(const double* g, double* w, int axes) const {
     for (int i = 0; i < n_; ++i) {
+      const int kmin = std::max(0, i - kBand);
       for (int a = 0; a < axes; ++a) {
         double s = g[axes * i + a];
-        for (int k = std::max(0, i - kBand); k < i; ++k) s -= at(i, k) * w[axes * k + a];
-        w[axes * i + a] = s / at(i, i);
+        for (int k = kmin; k < i; ++k) s -= at(i, k) * w[axes * k + a];
+        w[axes * i + a] = s * inv_diag_[i];
       }
     }
   }
@@ -69,6 +73,7 @@ class SmoothnessPreconditioner {
   double at(int i, int j) const { return l_[static_cast<size_t>(i) * (kBand + 1) + (i - j)]; }
   int n_ = 0;
   std::vector<double> l_;
+  std::vector<double> inv_diag_;
 };
 
 struct Problem {

@@ -27,7 +27,7 @@ struct EamParams {
 
   // Uniform knot span of the initial B-spline (s); the actual span divides the initial duration
   // into whole segments and grows when time is re-allocated.
-  double knot_span_s = 0.15;
+  double knot_span_s = 0.2;
   // lambda1 / lambda2 for open space (N = 0) and narrow space (N = 1), lambda3 for both.
   double lambda_smooth_open = 1.0;
   double lambda_smooth_narrow = 0.2;
@@ -40,7 +40,7 @@ struct EamParams {
   // Only control points within this time of a colliding stretch are optimised (EAM is a local
   // re-optimisation; the rest of the trajectory keeps its shape, and the problem stays small
   // and well conditioned).
-  double window_margin_s = 0.6;
+  double window_margin_s = 0.5;
   // Start the optimisation from the A* guide path on each colliding stretch (control points
   // placed along it) instead of from the colliding guess.
   bool guide_warm_start = true;
