@@ -54,7 +54,7 @@ struct EamParams {
   int max_restarts = 1;
   // L-BFGS evaluations per optimisation, and its relative stopping tolerance on the cost.
   int max_iterations = 200;
-  double optimizer_ftol_rel = 1e-3;
+  double optimizer_ftol_rel = 1e-2;
   // Accepted excess of the exact max speed / acceleration over the limits (the paper accepts a
   // small dynamic violation in an emergency).
   double limit_tolerance_ratio = 0.05;
