@@ -82,13 +82,19 @@ bool awayFromObstacle(const VoxelGrid& grid, const Eigen::Vector3d& x, const Eig
   const double reach = grid.inflationRadius() + res;
   const int r = static_cast<int>(std::ceil(reach / res));
   const Eigen::Vector3i c = grid.localIndexOf(x);
+  const Eigen::Vector3i& size = grid.size();
+  // Offset of x from its cell's centre; the offset from a neighbour's centre follows by adding
+  // whole voxels. Rows along x are contiguous in memory.
+  const Eigen::Vector3d x_local = x - grid.centerOfLocal(c);
+  const int x_lo = std::max(0, c.x() - r), x_hi = std::min(size.x() - 1, c.x() + r);
   Eigen::Vector3d n = Eigen::Vector3d::Zero();
-  for (int dz = -r; dz <= r; ++dz) {
-    for (int dy = -r; dy <= r; ++dy) {
-      for (int dx = -r; dx <= r; ++dx) {
-        const Eigen::Vector3i cell = c + Eigen::Vector3i(dx, dy, dz);
-        if (grid.at(cell) != Occupancy::kOccupied) continue;
-        const Eigen::Vector3d diff = x - grid.centerOfLocal(cell);
+  for (int z = std::max(0, c.z() - r); z <= std::min(size.z() - 1, c.z() + r); ++z) {
+    for (int y = std::max(0, c.y() - r); y <= std::min(size.y() - 1, c.y() + r); ++y) {
+      const int64_t row = grid.linearIndex(Eigen::Vector3i(0, y, z));
+      for (int xi = x_lo; xi <= x_hi; ++xi) {
+        if (grid.atLinear(row + xi) != Occupancy::kOccupied) continue;
+        const Eigen::Vector3d diff =
+            x_local - res * Eigen::Vector3d(xi - c.x(), y - c.y(), z - c.z());
         const double d = diff.norm();
         if (d >= reach || d < 1e-9) continue;
         n += diff / d * (reach - d) * (reach - d);

@@ -310,8 +310,10 @@ Planner::RoundsOutcome Planner::runRounds(const VoxelGrid& grid, const PlanReque
       // The curve through the warm-started control points cuts the corners of the guide, which
       // hugs the obstacles: give those grazes their pairs now (from the same guides) rather
       // than in another round.
-      for (const CollisionStretch& g :
-           findCollisionStretches(at.spline, grid, P.start_escape_radius_m, at.check_step)) {
+      const std::vector<CollisionStretch> grazes = timed(&r.stats.check_us, [&] {
+        return findCollisionStretches(at.spline, grid, P.start_escape_radius_m, at.check_step);
+      });
+      for (const CollisionStretch& g : grazes) {
         for (const GuideSpan& span : round_guides) {
           if (g.blocked.back().t < span.t0 || g.blocked.front().t > span.t1) continue;
           added += addAnchorPairs(g, r.guide_paths[span.index], at.spline, grid, kFirstFree,
