@@ -50,6 +50,15 @@ double limitRatio(const UniformBspline& spline, const EamParams& p) {
   return std::max(vmax / p.max_vel_mps, std::sqrt(amax / p.max_acc_mps2));
 }
 
+CostSettings costSettings(const EamParams& p) {
+  CostSettings s;
+  s.max_vel_mps = p.max_vel_mps;
+  s.max_acc_mps2 = p.max_acc_mps2;
+  s.box_min = p.geofence_min;
+  s.box_max = p.geofence_max;
+  return s;
+}
+
 // Slower everywhere: the same control points on a longer knot span (the same curve, speeds /
 // ratio, accelerations / ratio^2), except the first three, which must keep reproducing the
 // start state.
@@ -223,11 +232,7 @@ Planner::RoundsOutcome Planner::runRounds(const VoxelGrid& grid, const PlanReque
                                           Attempt& at, PlanResult& r) {
   const EamParams& P = params_;
   const int last_free = at.spline.numControlPoints() - 4;
-  CostSettings settings;
-  settings.max_vel_mps = P.max_vel_mps;
-  settings.max_acc_mps2 = P.max_acc_mps2;
-  settings.box_min = P.geofence_min;
-  settings.box_max = P.geofence_max;
+  const CostSettings settings = costSettings(P);
   GuideStats guide_stats;
   RoundsOutcome outcome = RoundsOutcome::kStillColliding;
   for (;;) {
@@ -433,6 +438,13 @@ PlanResult Planner::plan(const VoxelGrid& grid, const PlanRequest& req) {
       r.stats.max_acc = v.max_acc;
       if (v.ok) {
         for (const auto& list : at.pairs) r.stats.pairs += static_cast<int>(list.size());
+        if (r.stats.rounds == 0) {  // nothing to avoid: report with the open-space weights
+          r.weights =
+              CostWeights{P.lambda_smooth_open, P.lambda_collision_open, P.lambda_feasibility};
+        }
+        // The objective of the answer itself (after any time re-allocation).
+        r.terms = BsplineCost(costSettings(P), r.weights, &at.pairs)
+                      .evaluate(at.spline.controlPoints(), at.spline.knotSpan(), nullptr);
         r.jerk_energy = cubicJerkEnergy(traj);
         r.trajectory = std::move(traj);
         r.ok = true;

@@ -113,6 +113,36 @@ TEST(EamPlanner, KeepsAMovingStartStateExactly) {
   expectValid(g, req, r, p);
 }
 
+TEST(EamPlanner, StartInTheInflatedMarginMayLeaveIt) {
+  // A newly mapped pillar 0.2 m from the vehicle: the start is inside the 0.3 m inflation (not
+  // in the obstacle). The answer leaves the margin within start_escape_radius_m and never
+  // touches the obstacle.
+  mmh::VoxelGrid g = eam_test::freeGrid();
+  eam_test::addPillar(g, 1.0, 0.55, 0.35);
+  const auto p = params();
+  mmh::eam::Planner planner(p);
+  PlanRequest req;
+  req.start.position = Vector3d(1.0, 0.0, 1.2);
+  ASSERT_TRUE(g.isBlockedPoint(req.start.position));
+  ASSERT_FALSE(g.isOccupiedPoint(req.start.position));
+  req.target = Vector3d(9.0, -0.5, 1.2);
+  const PlanResult r = planner.plan(g, req);
+  ASSERT_TRUE(r.ok) << toString(r.reason) << ": " << r.detail;
+  const mmh::Trajectory& t = r.trajectory;
+  EXPECT_EQ(eam_test::firstBlockedTime(g, t, /*occupied_only=*/true), -1.0);
+  bool left = false;
+  for (double s = 0.0; s <= t.duration(); s += 0.002) {
+    const Vector3d x = t.position(s);
+    if (!g.isBlockedPoint(x)) {
+      left = true;
+    } else {
+      ASSERT_FALSE(left) << "back in the margin at t=" << s;
+      ASSERT_LE((x - req.start.position).norm(), p.start_escape_radius_m + 1e-9);
+    }
+  }
+  EXPECT_TRUE(left);
+}
+
 TEST(EamPlanner, EmptyReferenceUsesAStraightGuess) {
   mmh::VoxelGrid g = eam_test::freeGrid();
   eam_test::addPillar(g, 4.0, -0.1, 0.3);

@@ -58,7 +58,7 @@ struct EamParams {
   // Accepted excess of the exact max speed / acceleration over the limits (the paper accepts a
   // small dynamic violation in an emergency).
   double limit_tolerance_ratio = 0.05;
-  // A* budget and the radius around a start inside the inflated margin that may be crossed.
+  // A* budget per guide search.
   int astar_max_expansions = 200000;
   // Weighted A*: a guide need not be the shortest path, and a weight above 1 saves most of the
   // expansions (the slot cost makes the plain octile heuristic weak).
@@ -73,6 +73,8 @@ struct EamParams {
   double astar_slab_margin_m = 0.0;
   // ... and the box around the stretch's end points widened by this (horizontally).
   double astar_box_margin_m = 3.0;
+  // A start inside the inflated margin (not in an occupied cell) may cross it this far: the
+  // vehicle has to be able to leave the margin a newly mapped obstacle put it in.
   double start_escape_radius_m = 0.3;
 };
 
