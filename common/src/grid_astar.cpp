@@ -101,7 +101,7 @@ AStarResult GridAStar::search(const VoxelGrid& grid, const Eigen::Vector3d& star
   auto closed = [&](int64_t i) { return stamp_[i] == (generation_ | kClosedBit); };
 
   // Slight tie-breaking towards the goal keeps the search from fanning out on plateaus.
-  const double h_weight = 1.0 + 1e-3;
+  const double h_weight = std::max(1.0 + 1e-3, options.heuristic_weight);
   std::priority_queue<OpenEntry, std::vector<OpenEntry>, std::greater<OpenEntry>> open;
   stamp_[s_idx] = generation_;
   g_cost_[s_idx] = 0.f;
@@ -133,7 +133,8 @@ AStarResult GridAStar::search(const VoxelGrid& grid, const Eigen::Vector3d& star
           if (!in_bounds(nb)) continue;
           const int64_t ni = grid.linearIndex(nb);
           if (closed(ni) || !traversable(nb, ni)) continue;
-          const float step = static_cast<float>(std::sqrt(double(dx * dx + dy * dy + dz * dz)));
+          float step = static_cast<float>(std::sqrt(double(dx * dx + dy * dy + dz * dz)));
+          if (options.extra_step_cost) step += static_cast<float>(options.extra_step_cost(nb, ni));
           const float ng = gc + step;
           if (seen(ni) && g_cost_[ni] <= ng) continue;
           stamp_[ni] = generation_;
