@@ -167,9 +167,6 @@ int runNode(lcm::LCM& lcm, const std::vector<ServiceContext*>& contexts,
   }
   while (!stopRequested()) {
     const int status = lcm.handleTimeout(poll_ms);
-    // A signal that interrupts the wait makes handleTimeout fail: that is the requested stop,
-    // not an LCM failure.
-    if (status < 0 && stopRequested()) break;
     if (status < 0) {
       // SIGINT/SIGTERM interrupt the wait (EINTR): that is a stop, not an LCM failure.
       if (stopRequested()) break;
