@@ -143,7 +143,9 @@ AStarResult GridAStar::search(const VoxelGrid& grid, const Eigen::Vector3d& star
       if (!in_bounds(nb)) continue;
       const int64_t ni = cur + n.delta;
       if (closed(ni) || !traversable(nb, ni)) continue;
-      const float ng = gc + n.step;
+      float step = n.step;
+      if (options.extra_step_cost) step += static_cast<float>(options.extra_step_cost(nb, ni));
+      const float ng = gc + step;
       CellState& cell = cells_[ni];
       if ((cell.stamp & ~kClosedBit) == generation_ && cell.g <= ng) continue;
       cell = {ng, static_cast<int32_t>(cur), generation_};

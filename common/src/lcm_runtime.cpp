@@ -169,6 +169,8 @@ int runNode(lcm::LCM& lcm, const std::vector<ServiceContext*>& contexts,
     const int status = lcm.handleTimeout(poll_ms);
     if (status < 0 && stopRequested()) break;  // the signal interrupted the wait
     if (status < 0) {
+      // SIGINT/SIGTERM interrupt the wait (EINTR): that is a stop, not an LCM failure.
+      if (stopRequested()) break;
       logError("LCM handle failed; stopping");
       return 1;
     }

@@ -100,6 +100,27 @@ TEST(GridAStar, RespectsInflationBoundsAndEscape) {
   EXPECT_TRUE(astar.search(g, near_wall, Vector3d(1.0, 1.0, 1.0), escape).ok());
 }
 
+TEST(GridAStar, ExtraStepCostSteersThePath) {
+  // A straight corridor at y = 2 that costs 5 extra per cell between x = 3 and x = 7: the path
+  // takes the detour through y = 4 (4 extra cells of length) instead.
+  VoxelGrid g = unitGrid(11, 6, 1);
+  mmh::GridAStar astar;
+  mmh::AStarOptions o;
+  o.extra_step_cost = [](const Vector3i& c, int64_t) {
+    return c.y() <= 2 && c.x() >= 3 && c.x() <= 7 ? 5.0 : 0.0;
+  };
+  auto r = astar.search(g, cell(0, 2, 0), cell(10, 2, 0), o);
+  ASSERT_TRUE(r.ok());
+  for (const Vector3d& p : r.path) {
+    if (p.x() > 3.0 && p.x() < 8.0) {
+      EXPECT_GT(p.y(), 3.0);
+    }
+  }
+  r = astar.search(g, cell(0, 2, 0), cell(10, 2, 0));  // without it: straight
+  ASSERT_TRUE(r.ok());
+  EXPECT_NEAR(mmh::pathLength(r.path), 10.0, 1e-9);
+}
+
 TEST(ShortenPath, KeepsOnlyTurnPointsAndStaysFree) {
   VoxelGrid g(0.1, Vector3i(0, 0, 0), Vector3i(80, 80, 10));
   g.setInflationRadius(0.2);

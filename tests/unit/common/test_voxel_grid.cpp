@@ -80,6 +80,33 @@ TEST(VoxelGrid, ShiftKeepsOverlapAndInflation) {
   }
 }
 
+TEST(VoxelGrid, ShiftMatchesAFreshGridInEveryDirection) {
+  // Obstacles everywhere, including next to the faces, and shifts along every axis and sign:
+  // states and inflation must equal a grid built directly at the new origin.
+  const Vector3i size(23, 17, 9);
+  for (const Vector3i& shift : {Vector3i(3, 0, 0), Vector3i(-4, 2, 0), Vector3i(1, -3, 2),
+                                Vector3i(-2, -2, -1), Vector3i(0, 0, 5), Vector3i(30, 0, 0)}) {
+    VoxelGrid g(0.1, Vector3i(5, -7, 2), size);
+    g.setInflationRadius(0.25);
+    for (int64_t i = 0; i < g.numCells(); i += 7) g.setLinear(i, mmh::Occupancy::kOccupied);
+    for (int64_t i = 3; i < g.numCells(); i += 11) g.setLinear(i, mmh::Occupancy::kFree);
+    VoxelGrid moved = g;
+    moved.shiftTo(g.originIndex() + shift);
+    VoxelGrid fresh(0.1, g.originIndex() + shift, size);
+    fresh.setInflationRadius(0.25);
+    for (int64_t i = 0; i < fresh.numCells(); ++i) {
+      const Vector3i old_local = fresh.localFromLinear(i) + shift;
+      if (g.inWindow(old_local)) fresh.setLinear(i, g.at(old_local));
+    }
+    ASSERT_EQ(moved.rawCells(), fresh.rawCells()) << shift.transpose();
+    ASSERT_EQ(moved.numOccupied(), fresh.numOccupied());
+    for (int64_t i = 0; i < fresh.numCells(); ++i) {
+      ASSERT_EQ(moved.isBlockedLinear(i), fresh.isBlockedLinear(i))
+          << "shift " << shift.transpose() << " cell " << fresh.localFromLinear(i).transpose();
+    }
+  }
+}
+
 TEST(CollisionCheck, SegmentsAndTrajectories) {
   VoxelGrid g(0.1, Vector3i(0, 0, 0), Vector3i(50, 50, 20));
   g.setInflationRadius(0.2);

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -20,9 +21,12 @@ struct AStarOptions {
   // When the start lies in the inflated (but not occupied) zone, cells within this distance of it
   // may be crossed so that the vehicle can leave the margin it is in.
   double start_escape_radius_m = 0.0;
-  // Weighted A*: the heuristic is multiplied by this (>= 1). Above 1 the search expands far
-  // fewer cells and the path may be longer by at most this factor.
+  // Weight on the heuristic: above 1 the search expands far fewer cells and returns a path at
+  // most this factor longer than the shortest (weighted A*); 1 (+ a tie-breaking 1e-3) is exact.
   double heuristic_weight = 1.0;
+  // Optional extra cost (in cells, >= 0) of entering a cell (local index, linear index), e.g. to
+  // keep the path away from obstacles. The heuristic stays admissible.
+  std::function<double(const Eigen::Vector3i&, int64_t)> extra_step_cost;
 };
 
 struct AStarResult {

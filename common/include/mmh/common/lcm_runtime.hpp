@@ -88,6 +88,11 @@ class ServiceContext {
   // delivered.
   template <class Msg, class Owner>
   void subscribe(const std::string& base_channel, void (Owner::*method)(const Msg&), Owner* owner);
+  // Same, for handlers that need the full channel name (e.g. a regex subscription over all
+  // vehicle prefixes: prefix ".*").
+  template <class Msg, class Owner>
+  void subscribe(const std::string& base_channel,
+                 void (Owner::*method)(const Msg&, const std::string& channel), Owner* owner);
 
   // Sets header.source and a per-channel header.seq (and header.utime from the message clock if
   // the caller left it 0), then publishes on prefix + base_channel.
@@ -140,6 +145,9 @@ class ServiceContext::TypedSubscription : public detail::SubscriptionBase {
  public:
   TypedSubscription(ServiceContext* ctx, void (Owner::*method)(const Msg&), Owner* owner)
       : ctx_(ctx), method_(method), owner_(owner) {}
+  TypedSubscription(ServiceContext* ctx, void (Owner::*method)(const Msg&, const std::string&),
+                    Owner* owner)
+      : ctx_(ctx), method_with_channel_(method), owner_(owner) {}
 
   void onRaw(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
     if (ctx_->dropForLoss(channel)) return;
@@ -163,17 +171,31 @@ class ServiceContext::TypedSubscription : public detail::SubscriptionBase {
     if (!ctx_->admit(channel, msg.header.source, msg.header.utime, msg.header.seq)) return;
     ctx_->clock_.observe(msg.header.utime);
     ++ctx_->msgs_in_;
-    (owner_->*method_)(msg);
+    if (method_)
+      (owner_->*method_)(msg);
+    else
+      (owner_->*method_with_channel_)(msg, channel);
   }
 
  private:
   ServiceContext* ctx_;
-  void (Owner::*method_)(const Msg&);
+  void (Owner::*method_)(const Msg&) = nullptr;
+  void (Owner::*method_with_channel_)(const Msg&, const std::string&) = nullptr;
   Owner* owner_;
 };
 
 template <class Msg, class Owner>
 void ServiceContext::subscribe(const std::string& base_channel, void (Owner::*method)(const Msg&),
+                               Owner* owner) {
+  auto sub = std::make_unique<TypedSubscription<Msg, Owner>>(this, method, owner);
+  lcm_subscriptions_.push_back(
+      lcm_.subscribe(channel(base_channel), &TypedSubscription<Msg, Owner>::onRaw, sub.get()));
+  subscriptions_.push_back(std::move(sub));
+}
+
+template <class Msg, class Owner>
+void ServiceContext::subscribe(const std::string& base_channel,
+                               void (Owner::*method)(const Msg&, const std::string& channel),
                                Owner* owner) {
   auto sub = std::make_unique<TypedSubscription<Msg, Owner>>(this, method, owner);
   lcm_subscriptions_.push_back(

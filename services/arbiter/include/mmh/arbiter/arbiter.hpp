@@ -1,0 +1,176 @@
+// The mode arbiter (paper Sec. III.A and III.D): holds the goal and the committed trajectory,
+// decides when to replan (lazy rules) and which modes to ask, picks the best verified answer,
+// and keeps the vehicle on a continuous, safe trajectory (a stopping one at worst).
+// No LCM here: the node feeds events in and publishes what comes out.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mmh/arbiter/arbiter_params.hpp"
+#include "mmh/arbiter/modes.hpp"
+#include "mmh/common/trajectory.hpp"
+#include "mmh/common/voxel_grid.hpp"
+
+namespace mmh::arbiter {
+
+struct PlanRequestOut {
+  int64_t request_id = 0;
+  Mode mode = Mode::kNone;
+  Trigger trigger = Trigger::kNone;
+  int64_t start_utime = 0;     // the answer must start at this time...
+  KinematicState start;        // ...in exactly this state
+  int64_t deadline_utime = 0;  // answers after this are ignored
+  int64_t map_seq = 0;
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();
+  Eigen::Vector3d goal = Eigen::Vector3d::Zero();
+  Trajectory reference;  // EAM on collision: rest of the committed trajectory from start_utime
+};
+
+struct ModeAnswer {
+  int64_t request_id = 0;
+  Mode mode = Mode::kNone;
+  bool ok = false;
+  int reason = 0;
+  std::string detail;
+  int64_t compute_us = 0;
+  int64_t start_utime = 0;
+  Trajectory trajectory;
+};
+
+struct CommitOut {
+  int64_t trajectory_id = 0;
+  int64_t start_utime = 0;
+  Mode mode = Mode::kNone;
+  Trajectory trajectory;
+};
+
+struct DecisionOut {
+  int64_t decision_seq = 0;
+  int64_t utime = 0;
+  Trigger trigger = Trigger::kNone;
+  Outcome outcome = Outcome::kPending;
+  bool awareness_safe = true;
+  int8_t awareness_reason = 0;
+  uint8_t modes_asked = 0;
+  uint8_t modes_ok = 0;
+  Mode committed_mode = Mode::kNone;
+  int64_t request_id = 0;
+  int64_t trajectory_id = 0;
+  std::array<int64_t, 5> compute_us{};  // per Mode index
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Vector3d local_target = Eigen::Vector3d::Zero();
+  std::string detail;
+};
+
+struct ArbiterCounters {
+  std::array<int, 5> iterations{};  // answers received per Mode index (failed ones included)
+  int decisions = 0;
+  int commits = 0;
+  int failures = 0;          // decisions without a usable answer
+  int unanswered = 0;        // requests that got no answer by their deadline
+  int late_answers = 0;      // answers after the decision was taken
+  int rejected_answers = 0;  // OK answers that failed the arbiter's own checks
+  int stops = 0;             // stopping trajectories committed
+  int rejected_goals = 0;
+};
+
+class Arbiter {
+ public:
+  explicit Arbiter(const ArbiterParams& params);
+
+  // --- inputs -----------------------------------------------------------------------------
+  // A new goal (or a moved one). Refused (false, with the reason) when outside the geofence or
+  // inside a mapped obstacle.
+  bool setGoal(int64_t goal_id, const Eigen::Vector3d& goal, int64_t now, std::string* why);
+  void setAwareness(bool safe, int8_t reason, int64_t goal_id, int64_t map_seq);
+  // The grid must stay alive until the next call (the node owns it).
+  void onMapUpdated(const VoxelGrid& grid, int64_t map_seq, int64_t map_utime, int64_t now);
+  void onOdometry(const KinematicState& state, int64_t now);
+  void onAnswer(const ModeAnswer& answer, int64_t now);
+
+  // --- outputs (the node takes them after every input) -----------------------------------
+  std::vector<PlanRequestOut> takeRequests() { return std::exchange(requests_, {}); }
+  std::optional<CommitOut> takeCommit() { return std::exchange(commit_, std::nullopt); }
+  std::vector<DecisionOut> takeDecisions() { return std::exchange(decisions_, {}); }
+
+  // --- state --------------------------------------------------------------------------------
+  const ArbiterCounters& counters() const { return counters_; }
+  const ArbiterParams& params() const { return params_; }
+  bool hasGoal() const { return goal_.has_value(); }
+  bool hasCommitted() const { return !committed_.empty(); }
+  const Trajectory& committed() const { return committed_; }
+  int64_t committedStartUtime() const { return committed_start_; }
+  Mode committedMode() const { return committed_mode_; }
+  bool pending() const { return pending_.has_value(); }
+  bool reached() const { return reached_; }
+  bool mapStale(int64_t now) const;
+
+ private:
+  struct Pending {
+    Trigger trigger = Trigger::kNone;
+    int64_t start_utime = 0;
+    int64_t deadline_utime = 0;
+    KinematicState start;
+    Eigen::Vector3d target = Eigen::Vector3d::Zero();
+    bool target_is_goal = false;
+    std::vector<PlanRequestOut> requests;
+    std::vector<ModeAnswer> answers;
+  };
+
+  void evaluate(int64_t now);
+  Trigger nextTrigger(int64_t now) const;
+  std::vector<Mode> chooseModes(Trigger trigger) const;
+  void startPlanning(Trigger trigger, const std::vector<Mode>& modes, int64_t now);
+  void decide(int64_t now, bool by_deadline);
+  bool verifyAnswer(const ModeAnswer& answer, std::string* why) const;
+  double score(const Trajectory& trajectory) const;
+  void commit(const Trajectory& trajectory, int64_t start_utime, Mode mode, bool ends_at_goal);
+  void commitStop(int64_t now, const std::string& why, Trigger trigger);
+  bool collisionAhead(int64_t now) const;
+  KinematicState stateAt(int64_t utime) const;
+  void pushDecision(DecisionOut decision);
+
+  ArbiterParams params_;
+  // Goal.
+  std::optional<Eigen::Vector3d> goal_;
+  int64_t goal_id_ = 0;
+  bool goal_changed_ = false;
+  bool reached_ = false;
+  // Inputs.
+  bool have_odometry_ = false;
+  KinematicState odometry_;
+  int64_t now_ = 0;
+  const VoxelGrid* grid_ = nullptr;
+  int64_t map_seq_ = 0, map_utime_ = 0;
+  bool have_awareness_ = false;
+  bool awareness_safe_ = true;
+  int8_t awareness_reason_ = 0;
+  int64_t awareness_goal_id_ = -1;
+  // Committed trajectory.
+  Trajectory committed_;
+  int64_t committed_start_ = 0;
+  Mode committed_mode_ = Mode::kNone;
+  bool committed_ends_at_goal_ = false;
+  int64_t next_trajectory_id_ = 1;
+  Eigen::Vector3d last_plan_position_ = Eigen::Vector3d::Zero();
+  // Replanning state.
+  std::optional<Pending> pending_;
+  bool collision_detected_ = false;
+  bool last_failed_ = false;
+  uint8_t tried_modes_ = 0;  // modes asked since the last commit
+  int64_t map_seq_at_failure_ = 0;
+  bool stopped_for_stale_map_ = false;
+  int64_t next_request_id_ = 1;
+  int64_t next_decision_seq_ = 1;
+  // Outputs.
+  std::vector<PlanRequestOut> requests_;
+  std::optional<CommitOut> commit_;
+  std::vector<DecisionOut> decisions_;
+  ArbiterCounters counters_;
+};
+
+}  // namespace mmh::arbiter

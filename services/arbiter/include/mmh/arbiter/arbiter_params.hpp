@@ -1,0 +1,48 @@
+// Parameters of the mode arbiter and the replanning policy (which baseline or ablation runs).
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+
+#include "mmh/common/config.hpp"
+
+namespace mmh::arbiter {
+
+// How the arbiter chooses modes and when it replans (BENCHMARK.md baselines and ablations).
+enum class Policy {
+  kMmh,             // awareness picks FPM/SOM, EAM on collision or SOM failure, lazy replanning
+  kMmhNoLazy,       // as kMmh, but replans every fixed_replan_distance_m of progress
+  kMmhNoAwareness,  // as kMmh, but always SOM first (FPM never used)
+  kEgo,             // EAM alone, replans every fixed_replan_distance_m and on collision
+  kSom,             // SOM alone, same fixed replanning
+};
+
+Policy parsePolicy(const std::string& name);  // throws ConfigError on an unknown name
+const char* toString(Policy policy);
+
+struct ArbiterParams {
+  Policy policy = Policy::kMmh;
+  double max_vel_mps = 3.0;
+  double max_acc_mps2 = 2.0;
+  double planning_horizon_s = 5.0;  // local target: at most max_vel * horizon away
+  double replan_lead_s = 0.05;      // a new trajectory takes effect this long after the request
+  double answer_deadline_s = 0.04;  // answers later than this after the request are ignored
+  double goal_tolerance_m = 0.3;
+  double fixed_replan_distance_m = 1.5;  // baselines: replan after this much progress
+  bool parallel_modes = false;           // ask SOM and EAM together when awareness says unsafe
+  double inflation_m = 0.3;              // the planners' map inflation (local target clearance)
+  double check_inflation_m = 0.25;       // inflation of the arbiter's own collision checks; a bit
+                                         // below the planners' so discretisation cannot make a
+                                         // freshly verified answer look colliding
+  double answer_speed_tolerance = 0.05;  // accepted relative excess over v_max / a_max (EAM's)
+  double stale_map_s = 1.0;              // LOCAL_MAP older than this (message clock) is stale
+  double narrow_probe_dist_m = 0.8;      // for moving a local target out of obstacles
+  Eigen::Vector3d geofence_min_m = Eigen::Vector3d(-1e3, -1e3, 0.0);
+  Eigen::Vector3d geofence_max_m = Eigen::Vector3d(1e3, 1e3, 1e3);
+
+  double horizonDistance() const { return max_vel_mps * planning_horizon_s; }
+};
+
+ArbiterParams loadArbiterParams(const Config& config);
+
+}  // namespace mmh::arbiter

@@ -1,0 +1,40 @@
+// Vocabulary of the arbiter: planning modes, replanning triggers and decision outcomes. The
+// numeric values equal the LCM constants (plan_request_t.MODE_*, arbiter_status_t.TRIGGER_* and
+// OUTCOME_*), so the node converts by a cast.
+#pragma once
+
+#include <cstdint>
+
+namespace mmh::arbiter {
+
+enum class Mode : int8_t { kNone = 0, kFpm = 1, kSom = 2, kEam = 3, kStop = 4 };
+
+enum class Trigger : int8_t {
+  kNone = 0,
+  kInitial = 1,    // first plan for a goal
+  kHalfway = 2,    // committed trajectory executed past its halfway point
+  kCollision = 3,  // newly mapped obstacle on the rest of the committed trajectory
+  kGoalChanged = 4,
+  kRetry = 5,     // the last attempt failed
+  kFixed = 6,     // fixed-distance replanning (baselines)
+  kDeadline = 7,  // a decision forced by the answer deadline
+};
+
+enum class Outcome : int8_t {
+  kPending = 0,
+  kCommitted = 1,
+  kFailed = 2,
+  kStopping = 3,
+  kReached = 4,
+  kRejected = 5,
+};
+
+const char* toString(Mode mode);
+const char* toString(Trigger trigger);
+const char* toString(Outcome outcome);
+
+inline uint8_t modeBit(Mode mode) {
+  return static_cast<uint8_t>(1u << static_cast<int>(mode));
+}
+
+}  // namespace mmh::arbiter

@@ -1,0 +1,37 @@
+// LCM adapter of the arbiter: feeds GOAL, ODOMETRY, AWARENESS, LOCAL_MAP and PLAN_RESULT into
+// mmh::arbiter::Arbiter and publishes its requests, TRAJECTORY and ARBITER_STATUS.
+#pragma once
+
+#include "mmh/arbiter/arbiter.hpp"
+#include "mmh/awareness_t.hpp"
+#include "mmh/common/config.hpp"
+#include "mmh/common/lcm_runtime.hpp"
+#include "mmh/common/local_map_codec.hpp"
+#include "mmh/goal_t.hpp"
+#include "mmh/local_map_t.hpp"
+#include "mmh/odometry_t.hpp"
+#include "mmh/plan_result_t.hpp"
+
+namespace mmh {
+
+class ArbiterNode {
+ public:
+  ArbiterNode(ServiceContext& ctx, const Config& config);
+  ArbiterNode(ServiceContext& ctx, const arbiter::ArbiterParams& params);
+
+  const arbiter::Arbiter& arbiter() const { return arbiter_; }
+
+ private:
+  void onGoal(const goal_t& msg);
+  void onOdometry(const odometry_t& msg);
+  void onAwareness(const awareness_t& msg);
+  void onLocalMap(const local_map_t& msg);
+  void onPlanResult(const plan_result_t& msg);
+  void flush();
+
+  ServiceContext& ctx_;
+  arbiter::Arbiter arbiter_;
+  LocalMapReceiver map_;
+};
+
+}  // namespace mmh

@@ -1,0 +1,68 @@
+#include "mmh/arbiter/arbiter_params.hpp"
+
+namespace mmh::arbiter {
+
+Policy parsePolicy(const std::string& name) {
+  if (name == "mmh") return Policy::kMmh;
+  if (name == "mmh-no-lazy") return Policy::kMmhNoLazy;
+  if (name == "mmh-no-awareness") return Policy::kMmhNoAwareness;
+  if (name == "ego") return Policy::kEgo;
+  if (name == "som") return Policy::kSom;
+  throw ConfigError("unknown arbiter policy '" + name +
+                    "' (allowed: mmh, mmh-no-lazy, mmh-no-awareness, ego, som)");
+}
+
+const char* toString(Policy policy) {
+  switch (policy) {
+    case Policy::kMmh:
+      return "mmh";
+    case Policy::kMmhNoLazy:
+      return "mmh-no-lazy";
+    case Policy::kMmhNoAwareness:
+      return "mmh-no-awareness";
+    case Policy::kEgo:
+      return "ego";
+    case Policy::kSom:
+      return "som";
+  }
+  return "?";
+}
+
+ArbiterParams loadArbiterParams(const Config& config) {
+  ArbiterParams p;
+  try {
+    p.policy = parsePolicy(config.getString("arbiter.policy"));
+  } catch (const ConfigError& e) {
+    throw ConfigError(config.source() + ": key 'arbiter.policy': " + e.what());
+  }
+  p.max_vel_mps = config.getDouble("vehicle.max_vel_mps", 0.1, 50.0);
+  p.max_acc_mps2 = config.getDouble("vehicle.max_acc_mps2", 0.1, 50.0);
+  p.planning_horizon_s = config.getDouble("arbiter.planning_horizon_s", 0.5, 60.0);
+  p.replan_lead_s = config.getDouble("arbiter.replan_lead_s", 0.0, 1.0);
+  p.answer_deadline_s = config.getDouble("arbiter.answer_deadline_s", 0.001, 2.0);
+  if (p.answer_deadline_s > p.replan_lead_s && p.replan_lead_s > 0.0) {
+    throw ConfigError(config.source() +
+                      ": key 'arbiter.answer_deadline_s' must not exceed arbiter.replan_lead_s "
+                      "(an answer must arrive before its trajectory takes effect)");
+  }
+  p.goal_tolerance_m = config.getDouble("arbiter.goal_tolerance_m", 0.05, 5.0);
+  p.fixed_replan_distance_m = config.getDouble("arbiter.fixed_replan_distance_m", 0.1, 50.0);
+  p.parallel_modes = config.getBool("arbiter.parallel_modes");
+  p.stale_map_s = config.getDouble("arbiter.stale_map_s", 0.05, 60.0);
+  p.inflation_m = config.getDouble("map.inflation_m", 0.0, 5.0);
+  p.check_inflation_m = config.getDouble("arbiter.check_inflation_m", 0.0, 5.0);
+  if (p.check_inflation_m > p.inflation_m) {
+    throw ConfigError(config.source() +
+                      ": key 'arbiter.check_inflation_m' must not exceed map.inflation_m");
+  }
+  p.answer_speed_tolerance = config.getDouble("arbiter.answer_limit_tolerance", 0.0, 0.5);
+  p.narrow_probe_dist_m = config.getDouble("awareness.narrow_probe_dist_m", 0.05, 10.0);
+  p.geofence_min_m = config.getVector3("geofence.min_m", -1e5, 1e5);
+  p.geofence_max_m = config.getVector3("geofence.max_m", -1e5, 1e5);
+  if ((p.geofence_max_m.array() <= p.geofence_min_m.array()).any()) {
+    throw ConfigError(config.source() + ": key 'geofence.max_m' must exceed geofence.min_m");
+  }
+  return p;
+}
+
+}  // namespace mmh::arbiter

@@ -1,0 +1,26 @@
+// EAM's initial guess: the rest of the committed trajectory, or a straight rest-to-rest quintic
+// when there is none, sampled into the control points of a uniform cubic B-spline whose first
+// three control points reproduce the start state and whose last three hold the target at rest.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "mmh/common/trajectory.hpp"
+#include "mmh/eam/uniform_bspline.hpp"
+
+namespace mmh::eam {
+
+// Quintic from the start state to the target at rest, on the shortest duration (10% steps) whose
+// exact maxima stay within the limits (or within the start state's own values if those are higher).
+Trajectory straightQuintic(const KinematicState& start, const Eigen::Vector3d& target,
+                           double max_vel_mps, double max_acc_mps2);
+
+// Uniform cubic B-spline following `guess` (whose duration sets the timing): K = ceil(T / span)
+// intervals (clamped to [min_segments, max_segments]) of dt = T / K; Q_0..Q_2 from the start
+// state, Q_K..Q_{K+2} = target, and in between Q_i = c(t) - dt^2/6 c''(t) at t = (i - 1) dt,
+// which makes the spline pass within O(dt^4) of c at the knots.
+UniformBspline sampleToBspline(const Trajectory& guess, const KinematicState& start,
+                               const Eigen::Vector3d& target, double knot_span_s,
+                               int min_segments = 6, int max_segments = 300);
+
+}  // namespace mmh::eam

@@ -1,0 +1,134 @@
+#include "eam_node.hpp"
+
+#include "mmh/common/msg_convert.hpp"
+
+namespace mmh {
+
+EamNode::EamNode(ServiceContext& ctx, const Config& config)
+    : ctx_(ctx),
+      map_(config.getDouble("map.inflation_m", 0.0, 5.0)),
+      planner_(eam::loadEamParams(config)) {
+  ctx_.subscribe(channels::kLocalMap, &EamNode::onLocalMap, this);
+  ctx_.subscribe(channels::kPlanRequestEam, &EamNode::onPlanRequest, this);
+}
+
+void EamNode::onLocalMap(const local_map_t& msg) {
+  std::string why;
+  switch (map_.apply(msg, &why)) {
+    case LocalMapReceiver::Result::kApplied:
+      if (map_.lastWasKeyframe()) planner_.prepare(map_.grid());  // cheap unless the size changed
+      break;
+    case LocalMapReceiver::Result::kGap:
+      ctx_.reject("map_gaps", "LOCAL_MAP gap: " + why);
+      break;
+    case LocalMapReceiver::Result::kRejected:
+      ctx_.reject("rejected_map", "LOCAL_MAP rejected: " + why);
+      break;
+    case LocalMapReceiver::Result::kWaitingForKeyframe:
+    case LocalMapReceiver::Result::kStale:
+      ctx_.increment("map_ignored");
+      break;
+  }
+}
+
+int16_t EamNode::reasonCode(eam::FailReason reason) {
+  using R = eam::FailReason;
+  switch (reason) {
+    case R::kNone:
+      return plan_result_t::REASON_NONE;
+    case R::kBadInput:
+      return plan_result_t::REASON_BAD_INPUT;
+    case R::kNoMap:
+      return plan_result_t::REASON_NO_MAP;
+    case R::kStartInObstacle:
+      return plan_result_t::REASON_START_IN_OBSTACLE;
+    case R::kTargetInObstacle:
+      return plan_result_t::REASON_TARGET_IN_OBSTACLE;
+    case R::kTargetOutOfBounds:
+      return plan_result_t::REASON_TARGET_OUT_OF_BOUNDS;
+    case R::kInfeasibleStart:
+      return plan_result_t::REASON_INFEASIBLE_START;
+    case R::kStartEqualsTarget:
+      return plan_result_t::REASON_START_EQUALS_TARGET;
+    case R::kNoPath:
+      return plan_result_t::REASON_NO_PATH;
+    case R::kOptimizer:
+      return plan_result_t::REASON_OPTIMIZER;
+    case R::kVerify:
+      return plan_result_t::REASON_VERIFY;
+  }
+  return plan_result_t::REASON_BAD_INPUT;
+}
+
+void EamNode::publishFailure(const plan_request_t& req, int16_t reason, const std::string& detail,
+                             int64_t started_us) {
+  plan_result_t out{};
+  out.request_id = req.request_id;
+  out.mode = plan_request_t::MODE_EAM;
+  out.status = plan_result_t::STATUS_FAILED;
+  out.reason = reason;
+  out.detail = detail;
+  out.compute_us = wallTimeUs() - started_us;
+  out.map_seq = map_.hasMap() ? map_.mapSeq() : 0;
+  out.trajectory.start_utime = req.start_utime;
+  out.trajectory.source_mode = plan_request_t::MODE_EAM;
+  ctx_.increment("plans_failed");
+  ctx_.publish(channels::kPlanResult, out);
+}
+
+void EamNode::onPlanRequest(const plan_request_t& req) {
+  const int64_t started = wallTimeUs();
+  if (req.mode != plan_request_t::MODE_EAM) {
+    publishFailure(req, plan_result_t::REASON_BAD_INPUT,
+                   "request on PLAN_REQUEST_EAM for mode " + std::to_string(req.mode), started);
+    return;
+  }
+  if (!map_.hasMap()) {
+    publishFailure(req, plan_result_t::REASON_NO_MAP, "no LOCAL_MAP received yet", started);
+    return;
+  }
+  eam::PlanRequest request;
+  request.start = startStateOf(req);
+  request.target = toVec3(req.target);
+  // The reference is the committed trajectory; only its part from start_utime on is the guess.
+  if (req.reference.num_pieces > 0) {
+    const Trajectory committed = fromMsg(req.reference);
+    const double offset_s = 1e-6 * static_cast<double>(req.start_utime - req.reference.start_utime);
+    if (offset_s <= 0.0)
+      request.reference = committed;
+    else if (offset_s < committed.duration() - 1e-6)
+      request.reference = committed.tail(offset_s);
+  }
+
+  const eam::PlanResult result = planner_.plan(map_.grid(), request);
+  plan_result_t out{};
+  out.request_id = req.request_id;
+  out.mode = plan_request_t::MODE_EAM;
+  out.status = result.ok ? plan_result_t::STATUS_OK : plan_result_t::STATUS_FAILED;
+  out.reason = reasonCode(result.reason);
+  out.detail = result.ok ? "" : std::string(eam::toString(result.reason)) + ": " + result.detail;
+  out.map_seq = map_.mapSeq();
+  out.narrow = result.narrow;
+  // Cost breakdown: control = exact jerk energy of the answer; no time term in EAM; penalty =
+  // the weighted collision and feasibility terms left at the optimum.
+  out.cost_total = result.terms.total;
+  out.cost_control = result.jerk_energy;
+  out.cost_time = 0.0;
+  out.cost_penalty = result.weights.collision * result.terms.collision +
+                     result.weights.feasibility * result.terms.feasibility;
+  out.trajectory.start_utime = req.start_utime;
+  out.trajectory.source_mode = plan_request_t::MODE_EAM;
+  if (result.ok) {
+    out.trajectory.trajectory_id = req.request_id;
+    toMsg(result.trajectory, out.trajectory);
+    ctx_.increment("plans_ok");
+  } else {
+    ctx_.increment("plans_failed");
+    ctx_.increment("failed_reason_" + std::to_string(out.reason));
+  }
+  if (result.narrow) ctx_.increment("narrow_weights");
+  out.compute_us = wallTimeUs() - started;
+  ctx_.publish(channels::kPlanResult, out);
+}
+
+}  // namespace mmh

@@ -1,0 +1,60 @@
+#include "mmh/eam/initial_guess.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mmh::eam {
+namespace {
+
+Piece quinticPiece(const KinematicState& s, const Eigen::Vector3d& target, double T) {
+  // Boundary conditions p, v, a at 0 and (target, 0, 0) at T.
+  const Eigen::Vector3d d = target - s.position;
+  const double T2 = T * T, T3 = T2 * T, T4 = T3 * T, T5 = T4 * T;
+  Piece piece;
+  piece.duration = T;
+  piece.coeffs.col(0) = s.position;
+  piece.coeffs.col(1) = s.velocity;
+  piece.coeffs.col(2) = 0.5 * s.acceleration;
+  piece.coeffs.col(3) = (20.0 * d - 12.0 * s.velocity * T - 3.0 * s.acceleration * T2) / (2.0 * T3);
+  piece.coeffs.col(4) =
+      (-30.0 * d + 16.0 * s.velocity * T + 3.0 * s.acceleration * T2) / (2.0 * T4);
+  piece.coeffs.col(5) = (12.0 * d - 6.0 * s.velocity * T - s.acceleration * T2) / (2.0 * T5);
+  return piece;
+}
+
+}  // namespace
+
+Trajectory straightQuintic(const KinematicState& start, const Eigen::Vector3d& target,
+                           double max_vel_mps, double max_acc_mps2) {
+  const double dist = (target - start.position).norm();
+  const double vlim = std::max(max_vel_mps, start.velocity.norm()) * (1.0 + 1e-6);
+  const double alim = std::max(max_acc_mps2, start.acceleration.norm()) * (1.0 + 1e-6);
+  // Lower bound: no rest-to-rest curve covers dist faster than at constant v_max.
+  double T = std::max({0.2, dist / max_vel_mps, start.velocity.norm() / max_acc_mps2});
+  Trajectory traj;
+  for (int iter = 0; iter < 100; ++iter) {
+    traj = Trajectory({quinticPiece(start, target, T)});
+    if (traj.maxSpeed() <= vlim && traj.maxAcceleration() <= alim) break;
+    T *= 1.1;
+  }
+  return traj;
+}
+
+UniformBspline sampleToBspline(const Trajectory& guess, const KinematicState& start,
+                               const Eigen::Vector3d& target, double knot_span_s, int min_segments,
+                               int max_segments) {
+  const double T = std::max(1e-3, guess.duration());
+  const int K =
+      std::clamp(static_cast<int>(std::ceil(T / knot_span_s - 1e-9)), min_segments, max_segments);
+  const double dt = T / K;
+  Eigen::Matrix3Xd q(3, K + 3);
+  q.leftCols(3) = UniformBspline::startControlPoints(start, dt);
+  for (int i = 3; i < K; ++i) {
+    const double t = (i - 1) * dt;
+    q.col(i) = guess.position(t) - dt * dt / 6.0 * guess.acceleration(t);
+  }
+  for (int i = K; i < K + 3; ++i) q.col(i) = target;
+  return UniformBspline(q, dt);
+}
+
+}  // namespace mmh::eam

@@ -1,0 +1,469 @@
+#include "mmh/eam/planner.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "mmh/common/narrow_space.hpp"
+#include "mmh/eam/bspline_optimizer.hpp"
+#include "mmh/eam/collision_pairs.hpp"
+#include "mmh/eam/cubic_roots.hpp"
+#include "mmh/eam/initial_guess.hpp"
+#include "mmh/eam/verification.hpp"
+
+namespace mmh::eam {
+namespace {
+
+constexpr int kFirstFree = 3;  // Q_0..Q_2 hold the start state
+// Re-allocate time when the exact maxima exceed the limits by more than this (rounding only).
+constexpr double kRefineAbove = 1.0 + 1e-3;
+// Time re-allocation overshoots slightly so that the start region, which does not scale, rarely
+// needs a second one.
+constexpr double kRefineMargin = 1.01;
+// While collisions remain, time is re-allocated only when the limits are broken by more than
+// this: the detours need more time than the guess had, and without it the feasibility term
+// keeps pulling the curve back into the obstacles.
+constexpr double kRefineWhileColliding = 1.1;
+// Sample spacing (in voxels) of the collision check: a quarter voxel like the verification,
+// and a tenth after the verification found a graze the coarser check missed.
+constexpr double kCheckStep = 0.5;
+constexpr double kFineCheckStep = 0.1;
+// Collision weight multiplier when collisions remain but no new pair could be made.
+constexpr double kCollisionBoost = 4.0;
+
+PlanResult fail(PlanResult r, FailReason reason, std::string detail) {
+  r.ok = false;
+  r.reason = reason;
+  r.detail = std::move(detail);
+  r.trajectory = Trajectory();
+  return r;
+}
+
+bool inBox(const Eigen::Vector3d& p, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+  return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
+}
+
+// Ratio by which the knot span must grow so that the maxima fall within the limits.
+double limitRatio(const UniformBspline& spline, const EamParams& p) {
+  double vmax = 0.0, amax = 0.0;
+  bsplineMaxima(spline, &vmax, &amax);
+  return std::max(vmax / p.max_vel_mps, std::sqrt(amax / p.max_acc_mps2));
+}
+
+CostSettings costSettings(const EamParams& p) {
+  CostSettings s;
+  s.max_vel_mps = p.max_vel_mps;
+  s.max_acc_mps2 = p.max_acc_mps2;
+  s.box_min = p.geofence_min;
+  s.box_max = p.geofence_max;
+  return s;
+}
+
+// Slower everywhere: the same control points on a longer knot span (the same curve, speeds /
+// ratio, accelerations / ratio^2), except the first three, which must keep reproducing the
+// start state.
+void reallocateTime(UniformBspline& spline, double ratio, const KinematicState& start) {
+  spline.setKnotSpan(spline.knotSpan() * ratio * kRefineMargin);
+  spline.controlPoints().leftCols(3) = UniformBspline::startControlPoints(start, spline.knotSpan());
+}
+
+// Integral of |jerk|^2 over pieces of degree <= 3 (jerk 6 c3, constant per piece); exact. The
+// general routine of Trajectory builds polynomial products and costs far more.
+double cubicJerkEnergy(const Trajectory& traj) {
+  double e = 0.0;
+  for (const Piece& p : traj.pieces()) {
+    if (!p.coeffs.rightCols(kMaxPolyOrder - 4).isZero(0.0)) return traj.jerkEnergy();
+    e += 36.0 * p.coeffs.col(3).squaredNorm() * p.duration;
+  }
+  return e;
+}
+
+// Runs f and adds its wall-clock time (us) to *acc: measurement only, never a decision.
+template <class F>
+auto timed(double* acc, F&& f) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto result = f();
+  *acc += std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+  return result;
+}
+
+// Point at arc length s along a polyline.
+Eigen::Vector3d pointAt(const std::vector<Eigen::Vector3d>& path, double s) {
+  for (size_t k = 0; k + 1 < path.size(); ++k) {
+    const double len = (path[k + 1] - path[k]).norm();
+    if (s <= len) return path[k] + (path[k + 1] - path[k]) * (len > 0.0 ? s / len : 0.0);
+    s -= len;
+  }
+  return path.back();
+}
+
+// Puts the free control points whose knot time lies in (t0, t1) on the guide path, spread by
+// arc length in proportion to time: the optimisation then starts from a curve that follows a
+// collision-free route instead of having to be pushed out of the obstacles.
+void warmStartFromGuide(const std::vector<Eigen::Vector3d>& guide, double t0, double t1,
+                        int first_free, int last_free, UniformBspline& spline) {
+  if (guide.size() < 2 || t1 <= t0) return;
+  const double total = pathLength(guide);
+  const double dt = spline.knotSpan();
+  for (int i = first_free; i <= last_free; ++i) {
+    const double t = (i - 1) * dt;  // Q_i weighs most on the curve at this time
+    if (t <= t0 || t >= t1) continue;
+    spline.controlPoints().col(i) = pointAt(guide, total * (t - t0) / (t1 - t0));
+  }
+}
+
+// Stretches closer than gap_s (in time) are merged: they share one A* search, so that their
+// detours agree (one side of an obstacle group rather than a slalom through it).
+std::vector<CollisionStretch> mergeStretches(const std::vector<CollisionStretch>& stretches,
+                                             double gap_s) {
+  std::vector<CollisionStretch> groups;
+  for (const CollisionStretch& s : stretches) {
+    if (!groups.empty() && s.blocked.front().t - groups.back().blocked.back().t < gap_s) {
+      CollisionStretch& g = groups.back();
+      g.blocked.insert(g.blocked.end(), s.blocked.begin(), s.blocked.end());
+      g.after = s.after;
+      g.t_after = s.t_after;
+    } else {
+      groups.push_back(s);
+    }
+  }
+  return groups;
+}
+
+}  // namespace
+
+// State of one attempt: the spline being shaped and what the rounds have learnt about it.
+struct Planner::Attempt {
+  UniformBspline spline;
+  PairSet pairs;
+  std::vector<char> free_mask;  // control points within window_margin_s of a collision
+  double boost = 1.0;           // extra factor on the collision weight
+  int round = 0;                // optimisations run in this attempt
+  int refines = 0;              // time re-allocations in this attempt
+  double check_step = 0.0;      // collision check sample spacing (m)
+  bool restart = false;         // first round: one guide for all collisions, slots avoided
+};
+
+namespace {
+
+// Nothing pushes the free control points vertically: every anchor pair repels horizontally
+// (vertical obstacles, the common case) and the points keep clear of the geofence's floor and
+// ceiling. The altitude profile of the guess is then kept and only x and y are optimised, a
+// third fewer variables (the jerk energy is separable per axis, so z stays as smooth as the
+// guess was).
+bool horizontalProblem(const PairSet& pairs, const Eigen::Matrix3Xd& q,
+                       const std::vector<int>& free_points, const EamParams& p) {
+  constexpr double kFlat = 1e-3;
+  for (int i : free_points) {
+    for (const AnchorPair& pair : pairs[i]) {
+      if (std::abs(pair.v.z()) > kFlat) return false;
+    }
+    const double z = q(2, i);
+    if (z < p.geofence_min.z() + 0.05 || z > p.geofence_max.z() - 0.05) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+const char* toString(FailReason reason) {
+  switch (reason) {
+    case FailReason::kNone:
+      return "none";
+    case FailReason::kBadInput:
+      return "bad input";
+    case FailReason::kNoMap:
+      return "no map";
+    case FailReason::kStartInObstacle:
+      return "start in obstacle";
+    case FailReason::kTargetInObstacle:
+      return "target in obstacle";
+    case FailReason::kTargetOutOfBounds:
+      return "target out of bounds";
+    case FailReason::kInfeasibleStart:
+      return "infeasible start";
+    case FailReason::kStartEqualsTarget:
+      return "start equals target";
+    case FailReason::kNoPath:
+      return "no path";
+    case FailReason::kOptimizer:
+      return "optimizer";
+    case FailReason::kVerify:
+      return "verification";
+  }
+  return "?";
+}
+
+void bsplineMaxima(const UniformBspline& spline, double* max_speed, double* max_acc) {
+  const Eigen::Matrix3Xd& q = spline.controlPoints();
+  const double dt = spline.knotSpan();
+  double a2 = 0.0, v2 = 0.0;
+  for (int i = 0; i + 2 < q.cols(); ++i) {
+    a2 = std::max(a2, (q.col(i + 2) - 2.0 * q.col(i + 1) + q.col(i)).squaredNorm());
+  }
+  // The velocity of interval i is a quadratic B-spline with control points (Q_{k+1} - Q_k)/dt,
+  // k = i..i+2, and lies in their convex hull: an interval whose control velocities are all
+  // slower than the fastest speed found so far cannot hold the maximum and is skipped.
+  std::vector<double> cv2(q.cols() > 1 ? q.cols() - 1 : 0);
+  for (int k = 0; k + 1 < q.cols(); ++k) cv2[k] = (q.col(k + 1) - q.col(k)).squaredNorm();
+  const double inv_dt2 = 1.0 / (dt * dt);
+  for (int i = 0; i + 3 < q.cols(); ++i) {
+    const double bound = std::max({cv2[i], cv2[i + 1], cv2[i + 2]}) * inv_dt2;
+    if (bound <= v2) continue;
+    // v(t) = b0 + b1 t + b2 t^2 on [0, dt]; stationary points of |v|^2 solve v . v' = 0.
+    const Eigen::Vector3d b0 = (q.col(i + 2) - q.col(i)) / (2.0 * dt);
+    const Eigen::Vector3d b1 = (q.col(i) - 2.0 * q.col(i + 1) + q.col(i + 2)) / (dt * dt);
+    const Eigen::Vector3d b2 =
+        (-q.col(i) + 3.0 * q.col(i + 1) - 3.0 * q.col(i + 2) + q.col(i + 3)) / (2.0 * dt * dt * dt);
+    auto speed2 = [&](double t) { return (b0 + t * (b1 + t * b2)).squaredNorm(); };
+    v2 = std::max({v2, speed2(0.0), speed2(dt)});
+    double roots[3];
+    const int n = cubicRoots(2.0 * b2.dot(b2), 3.0 * b1.dot(b2), b1.dot(b1) + 2.0 * b0.dot(b2),
+                             b0.dot(b1), roots);
+    for (int k = 0; k < n; ++k) {
+      if (roots[k] > 0.0 && roots[k] < dt) v2 = std::max(v2, speed2(roots[k]));
+    }
+  }
+  *max_speed = std::sqrt(v2);
+  *max_acc = std::sqrt(a2) / (dt * dt);
+}
+
+Planner::RoundsOutcome Planner::runRounds(const VoxelGrid& grid, const PlanRequest& req,
+                                          Attempt& at, PlanResult& r) {
+  const EamParams& P = params_;
+  const int last_free = at.spline.numControlPoints() - 4;
+  const CostSettings settings = costSettings(P);
+  GuideStats guide_stats;
+  RoundsOutcome outcome = RoundsOutcome::kStillColliding;
+  for (;;) {
+    const std::vector<CollisionStretch> stretches = timed(&r.stats.check_us, [&] {
+      return findCollisionStretches(at.spline, grid, P.start_escape_radius_m, at.check_step);
+    });
+    if (stretches.empty()) {
+      const double ratio = limitRatio(at.spline, P);
+      if (ratio <= kRefineAbove || at.refines >= P.max_refine_rounds) {
+        outcome = RoundsOutcome::kCollisionFree;
+        break;
+      }
+      reallocateTime(at.spline, ratio, req.start);
+      ++at.refines;
+      ++r.stats.refines;
+      if (trace_) trace_("refine: knot span x " + std::to_string(ratio * kRefineMargin));
+      continue;  // check collisions again with the new start
+    }
+    if (at.round >= P.max_rebound_rounds) break;
+    if (at.round > 0 && at.refines < P.max_refine_rounds) {
+      const double ratio = limitRatio(at.spline, P);
+      if (ratio > kRefineWhileColliding) {
+        reallocateTime(at.spline, ratio, req.start);
+        ++at.refines;
+        ++r.stats.refines;
+        if (trace_) trace_("refine while colliding: x " + std::to_string(ratio * kRefineMargin));
+        continue;
+      }
+    }
+
+    // A restart takes one guide around all collisions at once, avoiding slots from the start.
+    const std::vector<CollisionStretch> groups =
+        mergeStretches(stretches, at.restart && at.round == 0 ? 1e9 : P.merge_gap_s);
+    // A restart wants a different, roomier way: slots avoided from the first search and twice
+    // as wide, and twice the clearance from the anchor planes.
+    const bool avoid_slots = at.restart && at.round == 0;
+    const double slot_width = (at.restart ? 2.0 : 1.0) * P.astar_slot_width_m;
+    const double clearance = (at.restart ? 2.0 : 1.0) * P.clearance_m;
+    int added = 0;
+    struct GuideSpan {
+      double t0, t1;
+      size_t index;  // into r.guide_paths
+    };
+    std::vector<GuideSpan> round_guides;
+    for (const CollisionStretch& s : groups) {
+      const Eigen::Vector3d goal = s.after.cwiseMax(P.geofence_min).cwiseMin(P.geofence_max);
+      const Eigen::Vector3d from = s.before.cwiseMax(P.geofence_min).cwiseMin(P.geofence_max);
+      double z_lo = std::min(from.z(), goal.z()), z_hi = std::max(from.z(), goal.z());
+      for (const CurveSample& b : s.blocked) {
+        z_lo = std::min(z_lo, b.point.z());
+        z_hi = std::max(z_hi, b.point.z());
+      }
+      const AStarResult path =
+          guides_.find(grid, from, goal, z_lo, z_hi, avoid_slots, slot_width, &guide_stats);
+      if (!path.ok()) {
+        if (at.round == 0 && !at.restart) {
+          outcome = RoundsOutcome::kNoPath;
+          r.detail = std::string("A* around a colliding stretch: ") + toString(path.status);
+          break;
+        }
+        continue;  // keep the pairs made so far; later rounds or the verification decide
+      }
+      // N: the narrow-space test of the paper on the guide path. Once narrow, the request keeps
+      // the narrow weights.
+      if (!r.narrow && isPathNarrow(grid, path.path, P.narrow_probe_dist_m)) r.narrow = true;
+      if (at.round == 0 && P.guide_warm_start) {
+        warmStartFromGuide(path.path, s.t_before, s.t_after, kFirstFree, last_free, at.spline);
+      }
+      added +=
+          addAnchorPairs(s, path.path, at.spline, grid, kFirstFree, last_free, clearance, at.pairs);
+      r.guide_paths.push_back(path.path);
+      round_guides.push_back({s.t_before, s.t_after, r.guide_paths.size() - 1});
+      const int margin = static_cast<int>(std::ceil(P.window_margin_s / at.spline.knotSpan()));
+      const int lo = std::max(kFirstFree, s.blocked.front().segment - margin);
+      const int hi = std::min(last_free, s.blocked.back().segment + 3 + margin);
+      for (int i = lo; i <= hi; ++i) at.free_mask[i] = 1;
+    }
+    if (outcome == RoundsOutcome::kNoPath) break;
+    if (at.round == 0 && P.guide_warm_start && !round_guides.empty()) {
+      // The curve through the warm-started control points cuts the corners of the guide, which
+      // hugs the obstacles: give those grazes their pairs now (from the same guides) rather
+      // than in another round.
+      const std::vector<CollisionStretch> grazes = timed(&r.stats.check_us, [&] {
+        return findCollisionStretches(at.spline, grid, P.start_escape_radius_m, at.check_step);
+      });
+      for (const CollisionStretch& g : grazes) {
+        for (const GuideSpan& span : round_guides) {
+          if (g.blocked.back().t < span.t0 || g.blocked.front().t > span.t1) continue;
+          added += addAnchorPairs(g, r.guide_paths[span.index], at.spline, grid, kFirstFree,
+                                  last_free, clearance, at.pairs);
+          break;
+        }
+      }
+    }
+    if (added == 0 && at.round > 0) at.boost *= kCollisionBoost;
+    std::vector<int> free_points;
+    for (int i = kFirstFree; i <= last_free; ++i) {
+      if (at.free_mask[i]) free_points.push_back(i);
+    }
+    if (free_points.empty()) break;
+
+    CostWeights w;
+    w.smooth = r.narrow ? P.lambda_smooth_narrow : P.lambda_smooth_open;
+    w.collision = at.boost * (r.narrow ? P.lambda_collision_narrow : P.lambda_collision_open);
+    w.feasibility = P.lambda_feasibility;
+    r.weights = w;
+    const BsplineCost cost(settings, w, &at.pairs);
+    const bool keep_altitude =
+        horizontalProblem(at.pairs, at.spline.controlPoints(), free_points, P);
+    const OptimizeResult opt = timed(&r.stats.optimize_us, [&] {
+      return optimizeControlPoints(at.spline, cost, free_points, P.max_iterations,
+                                   P.optimizer_ftol_rel, keep_altitude);
+    });
+    ++at.round;
+    ++r.stats.rounds;
+    r.stats.evaluations += opt.evaluations;
+    if (!opt.ok) {
+      r.detail = opt.error;
+      outcome = RoundsOutcome::kOptimizerError;
+      break;
+    }
+    r.terms = opt.terms;
+    if (trace_) {
+      trace_("round " + std::to_string(at.round) + ": stretches " +
+             std::to_string(stretches.size()) + ", pairs added " + std::to_string(added) + ", dt " +
+             std::to_string(at.spline.knotSpan()) + (r.narrow ? ", narrow" : ", open") +
+             ", evals " + std::to_string(opt.evaluations) + ", Js " +
+             std::to_string(opt.terms.smooth) + ", Jc " + std::to_string(opt.terms.collision) +
+             ", Jf " + std::to_string(opt.terms.feasibility) + (keep_altitude ? ", xy" : ", xyz") +
+             " " + opt.error);
+    }
+  }
+  r.stats.astar_calls += guide_stats.calls;
+  r.stats.astar_expansions += guide_stats.expansions;
+  r.stats.astar_us += guide_stats.us;
+  return outcome;
+}
+
+PlanResult Planner::plan(const VoxelGrid& grid, const PlanRequest& req) {
+  PlanResult r;
+  const EamParams& P = params_;
+  // --- input checks -----------------------------------------------------------------------
+  if (!req.start.position.allFinite() || !req.start.velocity.allFinite() ||
+      !req.start.acceleration.allFinite() || !req.target.allFinite())
+    return fail(r, FailReason::kBadInput, "start state or target is not finite");
+  if (!req.reference.empty() && !req.reference.isFinite())
+    return fail(r, FailReason::kBadInput, "reference trajectory is not finite or has empty pieces");
+  if (!grid.valid()) return fail(r, FailReason::kNoMap, "no map");
+  if (!inBox(req.target, P.geofence_min, P.geofence_max))
+    return fail(r, FailReason::kTargetOutOfBounds, "target outside the geofence");
+  if ((req.target - req.start.position).norm() < 1e-3 && req.start.velocity.norm() < 1e-3 &&
+      req.start.acceleration.norm() < 1e-3)
+    return fail(r, FailReason::kStartEqualsTarget, "already at rest on the target");
+  if (grid.isOccupiedPoint(req.start.position))
+    return fail(r, FailReason::kStartInObstacle, "start inside an occupied cell");
+  if (grid.isBlockedPoint(req.target))
+    return fail(r, FailReason::kTargetInObstacle, "target inside the inflated obstacles");
+  const double tol = 1.0 + P.limit_tolerance_ratio;
+  if (req.start.velocity.norm() > tol * P.max_vel_mps ||
+      req.start.acceleration.norm() > tol * P.max_acc_mps2)
+    return fail(r, FailReason::kInfeasibleStart, "start speed or acceleration beyond the limits");
+
+  // --- initial guess ----------------------------------------------------------------------
+  const Trajectory guess =
+      req.reference.empty() ? straightQuintic(req.start, req.target, P.max_vel_mps, P.max_acc_mps2)
+                            : req.reference;
+  const UniformBspline initial = sampleToBspline(guess, req.start, req.target, P.knot_span_s);
+  r.stats.initial_duration_s = initial.duration();
+  r.stats.segments = initial.numSegments();
+
+  // --- attempts: the rounds from the guess, then (when they run out) a restart ------------------
+  FailReason reason = FailReason::kOptimizer;
+  std::string detail;
+  bool collides = true;  // the last attempt failed on an obstacle (a restart may help)
+  for (int attempt = 0; attempt <= P.max_restarts && collides; ++attempt) {
+    Attempt at;
+    at.spline = initial;
+    at.pairs.assign(initial.numControlPoints(), {});
+    at.free_mask.assign(initial.numControlPoints(), 0);
+    at.check_step = kCheckStep * grid.resolution();
+    at.restart = attempt > 0;
+    r.stats.restarts = attempt;
+    r.guide_paths.clear();
+    for (;;) {
+      const RoundsOutcome outcome = runRounds(grid, req, at, r);
+      r.spline = at.spline;
+      r.pairs = at.pairs;
+      if (outcome == RoundsOutcome::kNoPath) return fail(r, FailReason::kNoPath, r.detail);
+      if (outcome == RoundsOutcome::kOptimizerError)
+        return fail(r, FailReason::kOptimizer, r.detail);
+      if (outcome == RoundsOutcome::kStillColliding) {
+        reason = FailReason::kOptimizer;
+        collides = true;
+        detail = "still in collision after " + std::to_string(r.stats.rounds) + " rounds";
+        break;
+      }
+      // --- exact conversion and independent verification ------------------------------------
+      Trajectory traj = at.spline.toTrajectory();
+      const Verification v = timed(&r.stats.verify_us, [&] {
+        return verifyTrajectory(traj, grid, req.start, req.target, P);
+      });
+      r.stats.max_speed = v.max_speed;
+      r.stats.max_acc = v.max_acc;
+      if (v.ok) {
+        for (const auto& list : at.pairs) r.stats.pairs += static_cast<int>(list.size());
+        if (r.stats.rounds == 0) {  // nothing to avoid: report with the open-space weights
+          r.weights =
+              CostWeights{P.lambda_smooth_open, P.lambda_collision_open, P.lambda_feasibility};
+        }
+        // The objective of the answer itself (after any time re-allocation).
+        r.terms = BsplineCost(costSettings(P), r.weights, &at.pairs)
+                      .evaluate(at.spline.controlPoints(), at.spline.knotSpan(), nullptr);
+        r.jerk_energy = cubicJerkEnergy(traj);
+        r.trajectory = std::move(traj);
+        r.ok = true;
+        r.reason = FailReason::kNone;
+        r.detail.clear();
+        return r;
+      }
+      reason = FailReason::kVerify;
+      detail = v.why;
+      collides = v.collision;
+      // The check and the verification sample different points: a curve that grazes a voxel
+      // corner may pass one and not the other. Go on with a finer check.
+      if (!v.collision || at.check_step <= kFineCheckStep * grid.resolution() ||
+          at.round >= P.max_rebound_rounds)
+        break;
+      at.check_step = kFineCheckStep * grid.resolution();
+    }
+  }
+  return fail(r, reason, detail);
+}
+
+}  // namespace mmh::eam

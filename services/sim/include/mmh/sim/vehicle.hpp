@@ -1,0 +1,76 @@
+// The simulated vehicle: follows the committed trajectory exactly (as the paper's simulator
+// does), holds its position with zero velocity when it has none or when it ran out, and takes a
+// new trajectory over at that trajectory's start time (the old one is flown until then). Yaw
+// follows the direction of flight, smoothed and rate-limited, so the forward camera looks where
+// the vehicle goes.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <vector>
+
+#include "mmh/common/trajectory.hpp"
+#include "mmh/sim/sim_params.hpp"
+
+namespace mmh::sim {
+
+// A part of a trajectory that was flown, in the trajectory's own time (seconds from its start).
+struct FlownPart {
+  std::shared_ptr<const Trajectory> trajectory;
+  double t0 = 0.0, t1 = 0.0;
+};
+
+class Vehicle {
+ public:
+  Vehicle(const Eigen::Vector3d& start, double yaw_rad, int64_t now_utime, const SimParams& params);
+
+  // Queues a committed trajectory that takes over at start_utime (at the next step if that time
+  // has passed). A later commit replaces queued ones that would start at or after its own start.
+  // An empty trajectory means: hold the position reached at start_utime.
+  void commit(std::shared_ptr<const Trajectory> trajectory, int64_t start_utime,
+              int64_t trajectory_id);
+
+  // Advances to now_utime, appending the trajectory parts flown since the last call to `flown`.
+  void advance(int64_t now_utime, std::vector<FlownPart>* flown);
+
+  int64_t nowUtime() const { return now_; }
+  const KinematicState& state() const { return state_; }
+  double yaw() const { return yaw_; }
+  Eigen::Quaterniond orientation() const;
+  int64_t activeTrajectoryId() const { return active_id_; }
+  bool hasTrajectory() const { return active_ != nullptr; }
+  // Start time of the first trajectory that took over; -1 before that.
+  int64_t firstTrajectoryUtime() const { return first_utime_; }
+  // A new trajectory that did not start where the vehicle was (more than 1 mm away): the vehicle
+  // jumps, since it follows the trajectory exactly. Counted and summed for the mission metrics.
+  int jumps() const { return jumps_; }
+  double jumpDistance() const { return jump_distance_; }
+  double lastJump() const { return last_jump_; }
+
+ private:
+  struct Pending {
+    std::shared_ptr<const Trajectory> trajectory;
+    int64_t start_utime;
+    int64_t id;
+  };
+  KinematicState stateAt(int64_t utime) const;
+  void flyActive(int64_t from, int64_t to, std::vector<FlownPart>* flown) const;
+  void updateYaw(double dt);
+
+  SimParams params_;
+  int64_t now_;
+  KinematicState state_;
+  Eigen::Vector3d hold_;  // position held without a trajectory
+  std::shared_ptr<const Trajectory> active_;
+  int64_t active_start_ = 0, active_id_ = 0;
+  std::deque<Pending> pending_;
+  int64_t first_utime_ = -1;
+  int jumps_ = 0;
+  double jump_distance_ = 0.0, last_jump_ = 0.0;
+  double yaw_ = 0.0;
+};
+
+}  // namespace mmh::sim

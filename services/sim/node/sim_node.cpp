@@ -1,0 +1,137 @@
+#include "sim_node.hpp"
+
+#include <sstream>
+
+#include "mmh/common/msg_convert.hpp"
+
+namespace mmh {
+
+SimNode::SimNode(ServiceContext& ctx, const Config& config, const SimOptions& options)
+    : ctx_(ctx), sim_(sim::loadSimParams(config), options) {
+  ctx_.clock().observe(sim_.nowUtime());
+  const sim::MissionMetrics& m = sim_.metrics();
+  std::ostringstream out;
+  out << ctx_.service() << ": " << sim_.world().describe() << ", start (" << options.start.x()
+      << ", " << options.start.y() << ", " << options.start.z() << "), goal (" << options.goal.x()
+      << ", " << options.goal.y() << ", " << options.goal.z() << "), shortest path "
+      << m.shortest_path_m << " m, time bound " << m.time_bound_s << " s, sensor "
+      << options.sensor;
+  logInfo(out.str());
+  ctx_.subscribe(channels::kTrajectory, &SimNode::onTrajectory, this);
+  ctx_.subscribe(channels::kGoal, &SimNode::onGoal, this);
+}
+
+void SimNode::onTrajectory(const trajectory_t& msg) {
+  auto trajectory = std::make_shared<const Trajectory>(fromMsg(msg));
+  if (!trajectory->empty() && !trajectory->isFinite()) {
+    ctx_.reject("rejected_trajectory", "TRAJECTORY " + std::to_string(msg.trajectory_id) +
+                                           " has non-finite or non-positive pieces");
+    return;
+  }
+  if (msg.start_utime < sim_.nowUtime()) {
+    // Late: it takes over at the next step, partway through.
+    ctx_.increment("trajectory_late");
+  }
+  sim_.commitTrajectory(std::move(trajectory), msg.start_utime, msg.trajectory_id);
+  ctx_.increment("trajectories_received");
+}
+
+void SimNode::onGoal(const goal_t& msg) {
+  if (msg.goal_id != sim_.metrics().goal_id) {
+    logInfo(ctx_.service() + ": goal " + std::to_string(msg.goal_id) + " at (" +
+            std::to_string(msg.position[0]) + ", " + std::to_string(msg.position[1]) + ", " +
+            std::to_string(msg.position[2]) + ")");
+  }
+  sim_.setGoal(toVec3(msg.position), msg.goal_id);
+}
+
+odometry_t SimNode::makeOdometry() const {
+  odometry_t msg{};
+  msg.header.utime = sim_.nowUtime();
+  const KinematicState& s = sim_.vehicle().state();
+  fromVec3(s.position, msg.position);
+  fromVec3(s.velocity, msg.velocity);
+  fromVec3(s.acceleration, msg.acceleration);
+  const Eigen::Quaterniond q = sim_.vehicle().orientation();
+  msg.orientation[0] = q.w();
+  msg.orientation[1] = q.x();
+  msg.orientation[2] = q.y();
+  msg.orientation[3] = q.z();
+  return msg;
+}
+
+pointcloud_t SimNode::makePointcloud(const sim::Scan& scan) const {
+  pointcloud_t msg{};
+  msg.header.utime = sim_.nowUtime();
+  msg.sensor_kind = scan.kind == sim::SensorKind::kDepth ? pointcloud_t::SENSOR_DEPTH
+                                                         : pointcloud_t::SENSOR_LIDAR;
+  fromVec3(scan.position, msg.sensor_position);
+  msg.sensor_orientation[0] = scan.orientation.w();
+  msg.sensor_orientation[1] = scan.orientation.x();
+  msg.sensor_orientation[2] = scan.orientation.y();
+  msg.sensor_orientation[3] = scan.orientation.z();
+  msg.max_range_m = static_cast<float>(scan.max_range_m);
+  msg.xyz = scan.xyz;
+  msg.num_coords = static_cast<int32_t>(msg.xyz.size());
+  return msg;
+}
+
+mission_status_t SimNode::makeMissionStatus() const {
+  const sim::MissionMetrics& m = sim_.metrics();
+  mission_status_t msg{};
+  msg.header.utime = sim_.nowUtime();
+  msg.active = !m.reached;
+  msg.reached = m.reached;
+  msg.collided = m.collided;
+  msg.flight_time_s = m.flight_time_s;
+  msg.distance_m = m.distance_m;
+  msg.energy = m.energy;
+  fromVec3(sim_.vehicle().state().position, msg.position);
+  fromVec3(m.goal, msg.goal);
+  // The message has no infinity: without obstacles report a large clearance.
+  msg.min_clearance_m = std::isfinite(m.min_clearance_m) ? m.min_clearance_m : 1e6;
+  return msg;
+}
+
+void SimNode::step() {
+  const sim::Simulator::StepResult r = sim_.step();
+  ctx_.clock().observe(sim_.nowUtime());
+  odometry_t odom = makeOdometry();
+  ctx_.publish(channels::kOdometry, odom);
+  if (r.scan) {
+    pointcloud_t cloud = makePointcloud(sim_.lastScan());
+    ctx_.publish(channels::kPointcloud, cloud);
+  }
+  if (sim_.vehicle().jumps() != jumps_seen_) {
+    // The committed trajectory did not start where the vehicle was: a planner/arbiter bug.
+    ctx_.increment("trajectory_jumps", sim_.vehicle().jumps() - jumps_seen_);
+    jumps_seen_ = sim_.vehicle().jumps();
+    logWarn(ctx_.service() + ": trajectory " + std::to_string(sim_.vehicle().activeTrajectoryId()) +
+            " does not start where the vehicle is: jumped " +
+            std::to_string(sim_.vehicle().lastJump()) + " m");
+  }
+  const sim::MissionMetrics& m = sim_.metrics();
+  if (m.reached && !reported_reached_) {
+    reported_reached_ = true;
+    std::ostringstream out;
+    out << ctx_.service() << ": goal reached after " << m.flight_time_s << " s (bound "
+        << m.time_bound_s << " s), " << m.distance_m << " m, energy " << m.energy
+        << ", min clearance " << m.min_clearance_m << " m";
+    logInfo(out.str());
+  }
+  if (!m.reached) reported_reached_ = false;
+  if (m.collided && !reported_collision_) {
+    reported_collision_ = true;
+    ctx_.increment("collisions");
+    std::ostringstream out;
+    out << ctx_.service() << ": COLLISION at (" << m.collision_position.x() << ", "
+        << m.collision_position.y() << ", " << m.collision_position.z() << ")";
+    logWarn(out.str());
+  }
+  if (r.status) {
+    mission_status_t status = makeMissionStatus();
+    ctx_.publish(channels::kMissionStatus, status);
+  }
+}
+
+}  // namespace mmh

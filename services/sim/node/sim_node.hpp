@@ -1,0 +1,50 @@
+// mmh-sim as a message-driven node: advances the Simulator one step per step() call and publishes
+// ODOMETRY (every step), POINTCLOUD (sensor rate) and MISSION_STATUS (status rate and on reach or
+// collision); takes TRAJECTORY (the committed one) and GOAL (for the mission status). No thread,
+// no wall clock: mmh-stack calls step() in lock-step, main.cpp paces it in real time.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "mmh/common/config.hpp"
+#include "mmh/common/lcm_runtime.hpp"
+#include "mmh/goal_t.hpp"
+#include "mmh/mission_status_t.hpp"
+#include "mmh/odometry_t.hpp"
+#include "mmh/pointcloud_t.hpp"
+#include "mmh/sim/simulator.hpp"
+#include "mmh/trajectory_t.hpp"
+
+namespace mmh {
+
+using SimOptions = sim::SimOptions;
+
+class SimNode {
+ public:
+  // Builds the world (throws ConfigError for bad config, std::runtime_error for bad options).
+  SimNode(ServiceContext& ctx, const Config& config, const SimOptions& options);
+
+  // Advances simulated time by sim.step_s and publishes what is due.
+  void step();
+  int64_t nowUtime() const { return sim_.nowUtime(); }
+  const sim::MissionMetrics& metrics() const { return sim_.metrics(); }
+  bool finished() const { return sim_.finished(); }
+  const sim::Simulator& simulator() const { return sim_; }
+
+  // Message builders (also used by tests).
+  odometry_t makeOdometry() const;
+  pointcloud_t makePointcloud(const sim::Scan& scan) const;
+  mission_status_t makeMissionStatus() const;
+
+ private:
+  void onTrajectory(const trajectory_t& msg);
+  void onGoal(const goal_t& msg);
+
+  ServiceContext& ctx_;
+  sim::Simulator sim_;
+  bool reported_reached_ = false, reported_collision_ = false;
+  int jumps_seen_ = 0;
+};
+
+}  // namespace mmh

@@ -1,0 +1,94 @@
+#include "mmh/sim/mission.hpp"
+
+#include <algorithm>
+
+#include "mmh/common/polynomial.hpp"
+#include "mmh/sim/shortest_path.hpp"
+
+namespace mmh::sim {
+
+double jerkEnergy(const Trajectory& trajectory, double t0, double t1) {
+  double energy = 0.0, start = 0.0;
+  for (const Piece& piece : trajectory.pieces()) {
+    const double a = std::max(t0, start) - start;
+    const double b = std::min(t1, start + piece.duration) - start;
+    if (b > a) {
+      // |jerk|^2 as a polynomial: jerk coefficient k is c_{k+3} (k+3)(k+2)(k+1).
+      PolyCoeffs sum = PolyCoeffs::Zero(1);
+      for (int axis = 0; axis < 3; ++axis) {
+        PolyCoeffs j = PolyCoeffs::Zero(kMaxPolyOrder - 3);
+        for (int k = 0; k + 3 < kMaxPolyOrder; ++k) {
+          j[k] = piece.coeffs(axis, k + 3) * (k + 3) * (k + 2) * (k + 1);
+        }
+        sum = polyAdd(sum, polyMultiply(j, j));
+      }
+      energy += polyIntegral(sum, b) - polyIntegral(sum, a);
+    }
+    start += piece.duration;
+  }
+  return energy;
+}
+
+MissionMonitor::MissionMonitor(const World& world, const SimParams& params,
+                               const Eigen::Vector3d& start, const Eigen::Vector3d& goal)
+    : world_(world), params_(params) {
+  metrics_.start = start;
+  metrics_.goal = goal;
+  computeBound();
+}
+
+void MissionMonitor::computeBound() {
+  metrics_.shortest_path_m =
+      world_.shortestPathLength(metrics_.start, metrics_.goal, params_.vehicle_radius_m);
+  metrics_.time_bound_s =
+      restToRestTime(metrics_.shortest_path_m, params_.max_vel_mps, params_.max_acc_mps2);
+}
+
+void MissionMonitor::setGoal(const Eigen::Vector3d& goal, int64_t goal_id) {
+  metrics_.goal_id = goal_id;
+  if ((goal - metrics_.goal).norm() < 1e-9) return;
+  metrics_.goal = goal;
+  metrics_.reached = false;
+  metrics_.arrival_utime = -1;
+  computeBound();
+}
+
+bool MissionMonitor::update(int64_t now_utime, const Vehicle& vehicle,
+                            const std::vector<FlownPart>& flown) {
+  if (metrics_.reached) return false;
+  bool event = false;
+  for (const FlownPart& part : flown) {
+    metrics_.distance_m += part.trajectory->arcLength(part.t0, part.t1);
+    metrics_.energy += jerkEnergy(*part.trajectory, part.t0, part.t1);
+  }
+  if (vehicle.jumps() != jumps_seen_) {
+    metrics_.distance_m += vehicle.jumpDistance() - jumps_seen_m_;
+    jumps_seen_m_ = vehicle.jumpDistance();
+    jumps_seen_ = vehicle.jumps();
+    metrics_.trajectory_jumps = jumps_seen_;
+  }
+  if (!metrics_.started && vehicle.firstTrajectoryUtime() >= 0) {
+    metrics_.started = true;
+    metrics_.start_utime = vehicle.firstTrajectoryUtime();
+  }
+  if (metrics_.started) {
+    metrics_.flight_time_s = 1e-6 * static_cast<double>(now_utime - metrics_.start_utime);
+  }
+  const Eigen::Vector3d& p = vehicle.state().position;
+  const double clearance = world_.clearance(p);
+  metrics_.min_clearance_m = std::min(metrics_.min_clearance_m, clearance);
+  if (!metrics_.collided && clearance < params_.vehicle_radius_m) {
+    metrics_.collided = true;
+    metrics_.collision_utime = now_utime;
+    metrics_.collision_position = p;
+    event = true;
+  }
+  if (!metrics_.collided && (p - metrics_.goal).norm() <= params_.goal_tolerance_m) {
+    metrics_.reached = true;
+    metrics_.arrival_utime = now_utime;
+    event = true;
+  }
+  return event;
+}
+
+}  // namespace mmh::sim

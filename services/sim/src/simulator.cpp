@@ -1,0 +1,106 @@
+#include "mmh/sim/simulator.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "mmh/common/forest.hpp"
+#include "mmh/sim/forest_world.hpp"
+#include "mmh/sim/pointcloud_world.hpp"
+
+namespace mmh::sim {
+namespace {
+
+double initialYaw(const SimOptions& o) {
+  if (std::isfinite(o.initial_yaw_deg)) return o.initial_yaw_deg * M_PI / 180.0;
+  const Eigen::Vector3d d = o.goal - o.start;
+  return d.head<2>().norm() > 1e-9 ? std::atan2(d.y(), d.x()) : 0.0;
+}
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+}  // namespace
+
+SensorKind parseSensorKind(const std::string& name) {
+  if (name == "depth") return SensorKind::kDepth;
+  if (name == "lidar") return SensorKind::kLidar;
+  throw std::runtime_error("unknown sensor '" + name + "' (use depth or lidar)");
+}
+
+std::unique_ptr<World> makeWorld(const SimOptions& options, const SimParams& params) {
+  if (options.world == "forest") {
+    ForestSpec spec;
+    spec.size_m = options.size_m;
+    spec.density_per_m2 = options.density_per_m2;
+    spec.seed = static_cast<uint64_t>(options.seed);
+    spec.start = options.start;
+    spec.goal = options.goal;
+    try {
+      return std::make_unique<ForestWorld>(generateForest(spec));
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error(e.what());
+    }
+  }
+  if (endsWith(options.world, ".pcd")) {
+    PointCloudWorldOptions o;
+    o.voxel_m = params.pcd_voxel_m;
+    o.bound_grid_m = params.bound_grid_m;
+    o.bound_min_m = params.geofence_min_m;
+    o.bound_max_m = params.geofence_max_m;
+    return PointCloudWorld::loadPcd(options.world, o);
+  }
+  throw std::runtime_error("unknown world '" + options.world +
+                           "' (use forest or the path of a .pcd file)");
+}
+
+Simulator::Simulator(const SimParams& params, const SimOptions& options)
+    : Simulator(params, options, makeWorld(options, params)) {}
+
+Simulator::Simulator(const SimParams& params, const SimOptions& options,
+                     std::unique_ptr<World> world)
+    : params_(params),
+      options_(options),
+      world_(std::move(world)),
+      step_us_(std::max<int64_t>(1, std::llround(params.step_s * 1e6))),
+      vehicle_(options.start, initialYaw(options), options.start_utime, params),
+      sensor_(parseSensorKind(options.sensor), params, static_cast<uint64_t>(options.noise_seed)),
+      monitor_(*world_, params, options.start, options.goal) {
+  if (!options.start.allFinite() || !options.goal.allFinite()) {
+    throw std::runtime_error("start and goal must be finite");
+  }
+  if (world_->clearance(options.start) < params.vehicle_radius_m) {
+    throw std::runtime_error("the start lies inside an obstacle (or closer than vehicle.radius_m)");
+  }
+}
+
+Simulator::StepResult Simulator::step() {
+  StepResult result;
+  const int64_t now = vehicle_.nowUtime() + step_us_;
+  flown_.clear();
+  vehicle_.advance(now, &flown_);
+  result.event = monitor_.update(now, vehicle_, flown_);
+  // Frames and status messages on their own rates, on the step grid, without drift.
+  const int64_t elapsed = now - options_.start_utime;
+  const auto due = [&](int64_t count, double rate_hz) {
+    return elapsed >= std::llround(static_cast<double>(count) * 1e6 / rate_hz);
+  };
+  if (due(scans_done_, params_.pointcloud_rate_hz)) {
+    while (due(scans_done_, params_.pointcloud_rate_hz)) ++scans_done_;
+    sensor_.scan(*world_, vehicle_.state().position, vehicle_.orientation(), &scan_);
+    result.scan = true;
+  }
+  if (due(statuses_done_, params_.mission_status_rate_hz) || result.event) {
+    while (due(statuses_done_, params_.mission_status_rate_hz)) ++statuses_done_;
+    result.status = true;
+  }
+  return result;
+}
+
+bool Simulator::finished() const {
+  const MissionMetrics& m = monitor_.metrics();
+  return m.reached || (m.collided && params_.stop_on_collision);
+}
+
+}  // namespace mmh::sim

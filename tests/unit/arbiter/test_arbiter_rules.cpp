@@ -1,0 +1,326 @@
+// The arbiter's rules one by one, with scripted inputs (no LCM, no planners).
+#include <gtest/gtest.h>
+
+#include "mmh/arbiter/arbiter.hpp"
+#include "mmh/common/collision_check.hpp"
+#include "mmh/common/minco.hpp"
+
+using Eigen::Vector3d;
+using Eigen::Vector3i;
+using mmh::KinematicState;
+using mmh::Trajectory;
+using namespace mmh::arbiter;
+
+namespace {
+
+constexpr int64_t kT0 = 1'000'000'000;  // message clock at the start of each test
+int64_t at(double seconds) {
+  return kT0 + static_cast<int64_t>(seconds * 1e6);
+}
+
+// A feasible rest-ending quintic from `start` to `target` (what a simple mode could answer).
+Trajectory simplePlan(const KinematicState& start, const Vector3d& target) {
+  for (double T = 0.8 * (target - start.position).norm() + 1.0;; T *= 1.1) {
+    mmh::MincoJerk m;
+    Eigen::Matrix3d head, tail;
+    head << start.position, start.velocity, start.acceleration;
+    tail << target, Vector3d::Zero(), Vector3d::Zero();
+    m.setConditions(head, tail, 1);
+    m.setParameters(Eigen::Matrix3Xd(3, 0), Eigen::VectorXd::Constant(1, T));
+    Trajectory t = m.trajectory();
+    if (t.maxSpeed() <= 3.0 && t.maxAcceleration() <= 2.0) return t;
+  }
+}
+
+class ArbiterRules : public ::testing::Test {
+ protected:
+  ArbiterRules() : grid_(0.1, Vector3i(-160, -160, -8), Vector3i(320, 320, 40)) {
+    params_.geofence_min_m = Vector3d(-30, -30, 0.3);
+    params_.geofence_max_m = Vector3d(30, 30, 2.7);
+    grid_.setInflationRadius(params_.check_inflation_m);
+    for (int64_t i = 0; i < grid_.numCells(); ++i) grid_.setLinear(i, mmh::Occupancy::kFree);
+  }
+
+  // Goal, map, awareness and odometry at rest at the origin: the arbiter's first request.
+  std::unique_ptr<Arbiter> started(Policy policy, bool safe = true) {
+    params_.policy = policy;
+    auto a = std::make_unique<Arbiter>(params_);
+    a->onMapUpdated(grid_, ++map_seq_, at(0), at(0));
+    a->setAwareness(safe, safe ? 0 : 1, 1, map_seq_);
+    std::string why;
+    EXPECT_TRUE(a->setGoal(1, goal_, at(0), &why)) << why;
+    a->onOdometry(rest(Vector3d(0, 0, 1.2)), at(0));
+    return a;
+  }
+
+  static KinematicState rest(const Vector3d& p) {
+    KinematicState s;
+    s.position = p;
+    return s;
+  }
+
+  static ModeAnswer okAnswer(const PlanRequestOut& r) {
+    ModeAnswer a;
+    a.request_id = r.request_id;
+    a.mode = r.mode;
+    a.ok = true;
+    a.compute_us = 100;
+    a.start_utime = r.start_utime;
+    a.trajectory = simplePlan(r.start, r.target);
+    return a;
+  }
+
+  static ModeAnswer failedAnswer(const PlanRequestOut& r) {
+    ModeAnswer a;
+    a.request_id = r.request_id;
+    a.mode = r.mode;
+    a.ok = false;
+    a.reason = 6;
+    a.detail = "no path";
+    return a;
+  }
+
+  // Flies the committed trajectory with odometry at 100 Hz from `from` to `to` (seconds), with a
+  // fresh map every 0.1 s unless told otherwise; returns the requests that appeared.
+  std::vector<PlanRequestOut> fly(Arbiter& a, double from, double to, bool maps = true) {
+    std::vector<PlanRequestOut> all;
+    for (double t = from; t <= to + 1e-9; t += 0.01) {
+      const int64_t now = at(t);
+      if (maps && std::lround(t * 100) % 10 == 0) a.onMapUpdated(grid_, ++map_seq_, now, now);
+      KinematicState s = a.committed().state((now - a.committedStartUtime()) * 1e-6);
+      a.onOdometry(s, now);
+      for (auto& r : a.takeRequests()) all.push_back(r);
+      if (!all.empty()) return all;
+    }
+    return all;
+  }
+
+  void putPillar(double x, double y, double radius) {
+    for (int64_t i = 0; i < grid_.numCells(); ++i) {
+      const Vector3d c = grid_.centerOfLocal(grid_.localFromLinear(i));
+      if (std::hypot(c.x() - x, c.y() - y) <= radius) grid_.setLinear(i, mmh::Occupancy::kOccupied);
+    }
+  }
+
+  ArbiterParams params_;
+  mmh::VoxelGrid grid_;
+  int64_t map_seq_ = 0;
+  Vector3d goal_{28.0, 0.0, 1.2};
+};
+
+}  // namespace
+
+TEST_F(ArbiterRules, SafeAwarenessAsksFpmAndCommitsAContinuousAnswer) {
+  auto a = started(Policy::kMmh, true);
+  auto requests = a->takeRequests();
+  ASSERT_EQ(requests.size(), 1u);
+  const PlanRequestOut r = requests[0];
+  EXPECT_EQ(r.mode, Mode::kFpm);
+  EXPECT_EQ(r.trigger, Trigger::kInitial);
+  EXPECT_EQ(r.start_utime, at(params_.replan_lead_s));
+  // Local target: the planning range (5 s at 3 m/s) towards the goal.
+  EXPECT_TRUE(r.target.isApprox(Vector3d(15, 0, 1.2)));
+  a->onAnswer(okAnswer(r), at(0.001));
+  auto commit = a->takeCommit();
+  ASSERT_TRUE(commit.has_value());
+  EXPECT_EQ(commit->start_utime, r.start_utime);
+  EXPECT_EQ(commit->mode, Mode::kFpm);
+  auto decisions = a->takeDecisions();
+  ASSERT_FALSE(decisions.empty());
+  EXPECT_EQ(decisions.back().outcome, Outcome::kCommitted);
+  EXPECT_EQ(a->counters().iterations[1], 1);
+}
+
+TEST_F(ArbiterRules, UnsafeAwarenessAsksSom) {
+  auto a = started(Policy::kMmh, false);
+  auto requests = a->takeRequests();
+  ASSERT_EQ(requests.size(), 1u);
+  EXPECT_EQ(requests[0].mode, Mode::kSom);
+}
+
+TEST_F(ArbiterRules, ReplansOnlyPastTheHalfwayPointFromTheCommittedState) {
+  auto a = started(Policy::kMmh);
+  auto r = a->takeRequests().at(0);
+  a->onAnswer(okAnswer(r), at(0.001));
+  ASSERT_TRUE(a->takeCommit());
+  const double duration = a->committed().duration();
+  // Nothing before the halfway point (lazy: never on a timer)...
+  auto early = fly(*a, 0.01, 0.5 * duration - 0.05);
+  EXPECT_TRUE(early.empty());
+  // ...then a halfway replan whose start state is the committed trajectory's state at its start.
+  auto later = fly(*a, 0.5 * duration - 0.04, 0.5 * duration + 0.1);
+  ASSERT_EQ(later.size(), 1u);
+  EXPECT_EQ(later[0].trigger, Trigger::kHalfway);
+  const KinematicState expected =
+      a->committed().state((later[0].start_utime - a->committedStartUtime()) * 1e-6);
+  EXPECT_LT((later[0].start.position - expected.position).norm(), 1e-12);
+  EXPECT_LT((later[0].start.velocity - expected.velocity).norm(), 1e-12);
+  EXPECT_LT((later[0].start.acceleration - expected.acceleration).norm(), 1e-12);
+  // The new local target is again the planning range ahead of the start.
+  EXPECT_NEAR((later[0].target - later[0].start.position).norm(), 15.0, 1e-6);
+}
+
+TEST_F(ArbiterRules, NoHalfwayReplanWhenTheTrajectoryEndsAtTheGoal) {
+  goal_ = Vector3d(8.0, 0.0, 1.2);
+  auto a = started(Policy::kMmh);
+  auto r = a->takeRequests().at(0);
+  EXPECT_TRUE(r.target.isApprox(goal_));
+  a->onAnswer(okAnswer(r), at(0.001));
+  ASSERT_TRUE(a->takeCommit());
+  EXPECT_TRUE(fly(*a, 0.01, a->committed().duration() + 0.2).empty());
+  auto decisions = a->takeDecisions();
+  ASSERT_FALSE(decisions.empty());
+  EXPECT_EQ(decisions.back().outcome, Outcome::kReached);
+  EXPECT_TRUE(a->reached());
+}
+
+TEST_F(ArbiterRules, NewObstacleOnTheCommittedTrajectoryAsksEamWithTheReference) {
+  auto a = started(Policy::kMmh);
+  auto r = a->takeRequests().at(0);
+  a->onAnswer(okAnswer(r), at(0.001));
+  ASSERT_TRUE(a->takeCommit());
+  fly(*a, 0.01, 1.0);
+  putPillar(9.0, 0.0, 0.4);  // across the committed straight line
+  a->onMapUpdated(grid_, ++map_seq_, at(1.0), at(1.0));
+  auto requests = a->takeRequests();
+  ASSERT_EQ(requests.size(), 1u);
+  EXPECT_EQ(requests[0].mode, Mode::kEam);
+  EXPECT_EQ(requests[0].trigger, Trigger::kCollision);
+  ASSERT_FALSE(requests[0].reference.empty());
+  // The reference is the rest of the committed trajectory from the new start time.
+  EXPECT_LT((requests[0].reference.position(0) - requests[0].start.position).norm(), 1e-9);
+  EXPECT_TRUE(requests[0].target.isApprox(a->committed().position(a->committed().duration())));
+}
+
+TEST_F(ArbiterRules, SomFailureFallsBackToEam) {
+  auto a = started(Policy::kMmh, false);
+  auto r = a->takeRequests().at(0);
+  ASSERT_EQ(r.mode, Mode::kSom);
+  a->onAnswer(failedAnswer(r), at(0.001));
+  EXPECT_FALSE(a->takeCommit().has_value());
+  auto decisions = a->takeDecisions();
+  ASSERT_FALSE(decisions.empty());
+  EXPECT_EQ(decisions.back().outcome, Outcome::kFailed);
+  a->onOdometry(rest(Vector3d(0, 0, 1.2)), at(0.01));
+  auto retry = a->takeRequests();
+  ASSERT_EQ(retry.size(), 1u);
+  EXPECT_EQ(retry[0].mode, Mode::kEam);
+  EXPECT_EQ(retry[0].trigger, Trigger::kRetry);
+  // Both failed: no spinning until the map changes.
+  a->onAnswer(failedAnswer(retry[0]), at(0.011));
+  a->onOdometry(rest(Vector3d(0, 0, 1.2)), at(0.02));
+  EXPECT_TRUE(a->takeRequests().empty());
+  a->onMapUpdated(grid_, ++map_seq_, at(0.05), at(0.05));
+  auto again = a->takeRequests();
+  ASSERT_EQ(again.size(), 1u);
+  EXPECT_EQ(again[0].mode, Mode::kSom);
+}
+
+TEST_F(ArbiterRules, NoAnswerByTheDeadlineWithDangerAheadCommitsAStop) {
+  auto a = started(Policy::kMmh);
+  auto r = a->takeRequests().at(0);
+  a->onAnswer(okAnswer(r), at(0.001));
+  ASSERT_TRUE(a->takeCommit());
+  // Fly to just before the halfway point, where the vehicle is fast.
+  const double t1 = std::floor(0.45 * a->committed().duration() * 10.0) / 10.0;
+  ASSERT_TRUE(fly(*a, 0.01, t1).empty());
+  const KinematicState before = a->committed().state((at(t1) - a->committedStartUtime()) * 1e-6);
+  ASSERT_GT(before.velocity.norm(), 1.0);
+  putPillar(before.position.x() + 4.0, 0.0, 0.4);
+  a->onMapUpdated(grid_, ++map_seq_, at(t1), at(t1));
+  auto eam = a->takeRequests();
+  ASSERT_EQ(eam.size(), 1u);
+  // EAM never answers; time passes beyond the deadline.
+  const double deadline = t1 + params_.answer_deadline_s + 0.01;
+  KinematicState s = a->committed().state((at(deadline) - a->committedStartUtime()) * 1e-6);
+  a->onOdometry(s, at(deadline));
+  auto commit = a->takeCommit();
+  ASSERT_TRUE(commit.has_value());
+  EXPECT_EQ(commit->mode, Mode::kStop);
+  auto decisions = a->takeDecisions();
+  ASSERT_FALSE(decisions.empty());
+  EXPECT_EQ(decisions.back().outcome, Outcome::kStopping);
+  EXPECT_EQ(a->counters().unanswered, 1);
+  // The stop continues the old trajectory without a jump and ends at rest within the limits.
+  const Trajectory& stop = commit->trajectory;
+  EXPECT_LT((stop.state(0).velocity - s.velocity).norm(), 0.05);  // s is 10 ms earlier
+  EXPECT_LT(stop.velocity(stop.duration()).norm(), 1e-6);
+  EXPECT_LE(stop.maxAcceleration(), params_.max_acc_mps2 + 1e-9);
+}
+
+TEST_F(ArbiterRules, NewGoalTriggersAReplan) {
+  auto a = started(Policy::kMmh);
+  a->onAnswer(okAnswer(a->takeRequests().at(0)), at(0.001));
+  ASSERT_TRUE(a->takeCommit());
+  fly(*a, 0.01, 1.0);
+  std::string why;
+  a->setAwareness(true, 0, 2, map_seq_);
+  ASSERT_TRUE(a->setGoal(2, Vector3d(0, 20, 1.2), at(1.0), &why));
+  auto requests = a->takeRequests();
+  ASSERT_EQ(requests.size(), 1u);
+  EXPECT_EQ(requests[0].trigger, Trigger::kGoalChanged);
+  EXPECT_NEAR(requests[0].goal.y(), 20.0, 1e-12);
+}
+
+TEST_F(ArbiterRules, GoalsOutsideTheFenceOrInsideObstaclesAreRefused) {
+  putPillar(5.0, 5.0, 0.5);
+  params_.policy = Policy::kMmh;
+  Arbiter a(params_);
+  a.onMapUpdated(grid_, 1, at(0), at(0));
+  std::string why;
+  EXPECT_FALSE(a.setGoal(1, Vector3d(100, 0, 1.2), at(0), &why));
+  EXPECT_NE(why.find("geofence"), std::string::npos);
+  EXPECT_FALSE(a.setGoal(2, Vector3d(5.0, 5.0, 1.2), at(0), &why));
+  EXPECT_NE(why.find("obstacle"), std::string::npos);
+  EXPECT_FALSE(a.setGoal(3, Vector3d(NAN, 0, 1), at(0), &why));
+  EXPECT_EQ(a.counters().rejected_goals, 3);
+  EXPECT_FALSE(a.hasGoal());
+  auto decisions = a.takeDecisions();
+  ASSERT_EQ(decisions.size(), 3u);
+  EXPECT_EQ(decisions[0].outcome, Outcome::kRejected);
+}
+
+TEST_F(ArbiterRules, DiscontinuousAnswersAreRejected) {
+  auto a = started(Policy::kMmh);
+  auto r = a->takeRequests().at(0);
+  ModeAnswer bad = okAnswer(r);
+  KinematicState shifted = r.start;
+  shifted.position.x() += 0.5;
+  bad.trajectory = simplePlan(shifted, r.target);
+  a->onAnswer(bad, at(0.001));
+  EXPECT_FALSE(a->takeCommit().has_value());
+  EXPECT_EQ(a->counters().rejected_answers, 1);
+}
+
+TEST_F(ArbiterRules, StaleMapStopsTheVehicle) {
+  auto a = started(Policy::kMmh);
+  a->onAnswer(okAnswer(a->takeRequests().at(0)), at(0.001));
+  ASSERT_TRUE(a->takeCommit());
+  // No map for longer than stale_map_s while flying.
+  fly(*a, 0.01, params_.stale_map_s + 0.2, false);
+  auto commit = a->takeCommit();
+  ASSERT_TRUE(commit.has_value());
+  EXPECT_EQ(commit->mode, Mode::kStop);
+}
+
+TEST_F(ArbiterRules, EgoPolicyReplansEveryFixedDistanceWithEam) {
+  auto a = started(Policy::kEgo);
+  auto r = a->takeRequests().at(0);
+  EXPECT_EQ(r.mode, Mode::kEam);
+  a->onAnswer(okAnswer(r), at(0.001));
+  ASSERT_TRUE(a->takeCommit());
+  std::vector<PlanRequestOut> next;
+  double t = 0.01;
+  KinematicState s;
+  for (; t < 20 && next.empty(); t += 0.01) {
+    s = a->committed().state((at(t) - a->committedStartUtime()) * 1e-6);
+    // Keep the map fresh.
+    if (std::lround(t * 100) % 10 == 0) a->onMapUpdated(grid_, ++map_seq_, at(t), at(t));
+    a->onOdometry(s, at(t));
+    next = a->takeRequests();
+  }
+  ASSERT_EQ(next.size(), 1u);
+  EXPECT_EQ(next[0].trigger, Trigger::kFixed);
+  EXPECT_EQ(next[0].mode, Mode::kEam);
+  EXPECT_NEAR((s.position - Vector3d(0, 0, 1.2)).norm(), params_.fixed_replan_distance_m, 0.05);
+}

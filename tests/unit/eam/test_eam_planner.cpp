@@ -1,0 +1,316 @@
+// The EAM planner on hand-made maps: avoidance of a pillar across the trajectory, a narrow gap
+// (narrow weights), exact start state, limits, and every failure reason.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "eam_test_grids.hpp"
+#include "mmh/common/config.hpp"
+#include "mmh/eam/initial_guess.hpp"
+#include "mmh/eam/planner.hpp"
+#include "mmh/eam/uniform_bspline.hpp"
+#include "mmh/eam/verification.hpp"
+
+using Eigen::Vector3d;
+using mmh::eam::FailReason;
+using mmh::eam::PlanRequest;
+using mmh::eam::PlanResult;
+
+namespace {
+
+mmh::eam::EamParams params() {
+  return mmh::eam::loadEamParams(
+      mmh::Config::loadFile(std::string(MMH_SOURCE_DIR) + "/deploy/config/default.yaml"));
+}
+
+PlanRequest request(const Vector3d& start, const Vector3d& target, double T) {
+  PlanRequest req;
+  req.start.position = start;
+  req.target = target;
+  req.reference = eam_test::straightLine(start, target, T);
+  return req;
+}
+
+// What every successful answer must satisfy, checked without the planner's own code.
+void expectValid(const mmh::VoxelGrid& g, const PlanRequest& req, const PlanResult& r,
+                 const mmh::eam::EamParams& p) {
+  ASSERT_TRUE(r.ok) << toString(r.reason) << ": " << r.detail;
+  const mmh::Trajectory& t = r.trajectory;
+  ASSERT_FALSE(t.empty());
+  EXPECT_LT((t.position(0.0) - req.start.position).norm(), 1e-9);
+  EXPECT_LT((t.velocity(0.0) - req.start.velocity).norm(), 1e-9);
+  EXPECT_LT((t.acceleration(0.0) - req.start.acceleration).norm(), 1e-8);
+  EXPECT_LT((t.position(t.duration()) - req.target).norm(), 1e-9);
+  EXPECT_LT(t.velocity(t.duration()).norm(), 1e-9);
+  EXPECT_LT(t.acceleration(t.duration()).norm(), 1e-8);
+  for (int i = 0; i + 1 < t.numPieces(); ++i) {  // C2 across pieces
+    const mmh::Piece& a = t.pieces()[i];
+    const mmh::Piece& b = t.pieces()[i + 1];
+    for (int order = 0; order <= 2; ++order)
+      ASSERT_LT((a.derivative(order, a.duration) - b.derivative(order, 0.0)).norm(), 1e-8);
+  }
+  EXPECT_EQ(eam_test::firstBlockedTime(g, t, /*occupied_only=*/true), -1.0);
+  EXPECT_EQ(eam_test::firstBlockedTime(g, t, /*occupied_only=*/false), -1.0);
+  EXPECT_LE(t.maxSpeed(), 1.05 * p.max_vel_mps);
+  EXPECT_LE(t.maxAcceleration(), 1.05 * p.max_acc_mps2);
+}
+
+}  // namespace
+
+TEST(EamPlanner, TrajectoryThroughAPillarComesOutCollisionFree) {
+  mmh::VoxelGrid g = eam_test::freeGrid();
+  eam_test::addPillar(g, 5.0, 0.05, 0.5);
+  const auto p = params();
+  mmh::eam::Planner planner(p);
+  const PlanRequest req = request(Vector3d(0, 0, 1.2), Vector3d(10, 0, 1.2), 7.0);
+  ASSERT_GE(eam_test::firstBlockedTime(g, req.reference, true), 0.0);  // the guess collides
+  const PlanResult r = planner.plan(g, req);
+  expectValid(g, req, r, p);
+  // Geometric check: outside the pillar grown by the inflation, up to the voxel quantisation.
+  EXPECT_GE(eam_test::minDistanceToAxis(r.trajectory, 5.0, 0.05), 0.5 + 0.3 - 0.071);
+  EXPECT_FALSE(r.narrow);  // obstacles on one side only: open-space weights
+  EXPECT_DOUBLE_EQ(r.weights.smooth, p.lambda_smooth_open);
+  EXPECT_GE(r.stats.astar_calls, 1);
+  EXPECT_GT(r.jerk_energy, 0.0);
+}
+
+TEST(EamPlanner, NarrowGapSelectsTheNarrowWeightsAndStaysCollisionFree) {
+  mmh::VoxelGrid g = eam_test::freeGrid();
+  // Opening of 1.0 m (0.4 m once inflated) at y = 1, the trajectory runs at y = 0: anywhere in
+  // the opening both walls are within the 0.8 m probe distance.
+  eam_test::addWallWithGap(g, 5.0, 0.3, 1.0, 1.0);
+  const auto p = params();
+  mmh::eam::Planner planner(p);
+  const PlanRequest req = request(Vector3d(0, 0, 1.2), Vector3d(10, 0, 1.2), 7.0);
+  const PlanResult r = planner.plan(g, req);
+  expectValid(g, req, r, p);
+  EXPECT_TRUE(r.narrow);
+  EXPECT_DOUBLE_EQ(r.weights.smooth, p.lambda_smooth_narrow);
+  EXPECT_GE(r.weights.collision, p.lambda_collision_narrow);
+  // It really went through the opening.
+  const mmh::Trajectory& t = r.trajectory;
+  for (double s = 0.0; s <= t.duration(); s += 0.01) {
+    const Vector3d x = t.position(s);
+    if (x.x() > 5.0 && x.x() < 5.3) {
+      EXPECT_NEAR(x.y(), 1.0, 0.2);
+    }
+  }
+}
+
+TEST(EamPlanner, KeepsAMovingStartStateExactly) {
+  mmh::VoxelGrid g = eam_test::freeGrid();
+  eam_test::addPillar(g, 5.0, 0.6, 0.4);
+  const auto p = params();
+  mmh::eam::Planner planner(p);
+  PlanRequest req;
+  req.start.position = Vector3d(0.0, 0.0, 1.2);
+  req.start.velocity = Vector3d(2.0, 0.3, 0.1);
+  req.start.acceleration = Vector3d(0.5, -0.4, 0.2);
+  req.target = Vector3d(10.0, 1.0, 1.5);
+  const PlanResult r = planner.plan(g, req);  // no reference: straight quintic guess
+  expectValid(g, req, r, p);
+}
+
+TEST(EamPlanner, StartInTheInflatedMarginMayLeaveIt) {
+  // A newly mapped pillar 0.2 m from the vehicle: the start is inside the 0.3 m inflation (not
+  // in the obstacle). The answer leaves the margin within start_escape_radius_m and never
+  // touches the obstacle.
+  mmh::VoxelGrid g = eam_test::freeGrid();
+  eam_test::addPillar(g, 1.0, 0.55, 0.35);
+  const auto p = params();
+  mmh::eam::Planner planner(p);
+  PlanRequest req;
+  req.start.position = Vector3d(1.0, 0.0, 1.2);
+  ASSERT_TRUE(g.isBlockedPoint(req.start.position));
+  ASSERT_FALSE(g.isOccupiedPoint(req.start.position));
+  req.target = Vector3d(9.0, -0.5, 1.2);
+  const PlanResult r = planner.plan(g, req);
+  ASSERT_TRUE(r.ok) << toString(r.reason) << ": " << r.detail;
+  const mmh::Trajectory& t = r.trajectory;
+  EXPECT_EQ(eam_test::firstBlockedTime(g, t, /*occupied_only=*/true), -1.0);
+  bool left = false;
+  for (double s = 0.0; s <= t.duration(); s += 0.002) {
+    const Vector3d x = t.position(s);
+    if (!g.isBlockedPoint(x)) {
+      left = true;
+    } else {
+      ASSERT_FALSE(left) << "back in the margin at t=" << s;
+      ASSERT_LE((x - req.start.position).norm(), p.start_escape_radius_m + 1e-9);
+    }
+  }
+  EXPECT_TRUE(left);
+}
+
+TEST(EamPlanner, EmptyReferenceUsesAStraightGuess) {
+  mmh::VoxelGrid g = eam_test::freeGrid();
+  eam_test::addPillar(g, 4.0, -0.1, 0.3);
+  const auto p = params();
+  mmh::eam::Planner planner(p);
+  PlanRequest req;
+  req.start.position = Vector3d(0, 0, 1.2);
+  req.target = Vector3d(8, 0.5, 1.2);
+  const PlanResult r = planner.plan(g, req);
+  expectValid(g, req, r, p);
+  EXPECT_EQ(r.reason, FailReason::kNone);
+}
+
+TEST(EamPlanner, CollisionFreeReferenceNeedsNoPairs) {
+  mmh::VoxelGrid g = eam_test::freeGrid();
+  eam_test::addPillar(g, 5.0, 3.0, 0.3);  // far to the side
+  const auto p = params();
+  mmh::eam::Planner planner(p);
+  const PlanRequest req = request(Vector3d(0, 0, 1.2), Vector3d(10, 0, 1.2), 7.0);
+  const PlanResult r = planner.plan(g, req);
+  expectValid(g, req, r, p);
+  EXPECT_EQ(r.stats.astar_calls, 0);
+  EXPECT_EQ(r.stats.pairs, 0);
+  // The answer follows the reference closely.
+  for (double s = 0.0; s <= 7.0; s += 0.1)
+    EXPECT_LT((r.trajectory.position(s) - req.reference.position(s)).norm(), 0.01);
+}
+
+TEST(EamPlanner, BadInputGetsAReasonAndNoCrash) {
+  mmh::VoxelGrid g = eam_test::freeGrid();
+  eam_test::addPillar(g, 5.0, 0.0, 0.5);
+  auto p = params();
+  mmh::eam::Planner planner(p);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const PlanRequest good = request(Vector3d(0, 0, 1.2), Vector3d(10, 0, 1.2), 7.0);
+
+  PlanRequest r1 = good;
+  r1.start.velocity.y() = nan;
+  EXPECT_EQ(planner.plan(g, r1).reason, FailReason::kBadInput);
+
+  PlanRequest r2 = good;
+  r2.target.x() = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(planner.plan(g, r2).reason, FailReason::kBadInput);
+
+  PlanRequest r3 = good;  // a reference with a NaN coefficient
+  r3.reference.pieces()[0].coeffs(1, 3) = nan;
+  EXPECT_EQ(planner.plan(g, r3).reason, FailReason::kBadInput);
+
+  PlanRequest r4 = good;  // a reference piece of zero duration
+  r4.reference.pieces()[0].duration = 0.0;
+  EXPECT_EQ(planner.plan(g, r4).reason, FailReason::kBadInput);
+
+  PlanRequest r5 = good;
+  r5.target = Vector3d(5.0, 0.0, 1.2);  // inside the pillar
+  EXPECT_EQ(planner.plan(g, r5).reason, FailReason::kTargetInObstacle);
+  r5.target = Vector3d(5.0, 0.75, 1.2);  // in its inflated margin
+  EXPECT_EQ(planner.plan(g, r5).reason, FailReason::kTargetInObstacle);
+
+  PlanRequest r6 = good;
+  r6.start.position = Vector3d(5.0, 0.1, 1.2);
+  EXPECT_EQ(planner.plan(g, r6).reason, FailReason::kStartInObstacle);
+
+  PlanRequest r7 = good;
+  r7.target = Vector3d(10.0, 0.0, 2.9);  // above the geofence
+  EXPECT_EQ(planner.plan(g, r7).reason, FailReason::kTargetOutOfBounds);
+
+  PlanRequest r8 = good;
+  r8.start.velocity = Vector3d(4.0, 0.0, 0.0);  // beyond v_max by more than the tolerance
+  EXPECT_EQ(planner.plan(g, r8).reason, FailReason::kInfeasibleStart);
+
+  PlanRequest r9;
+  r9.start.position = r9.target = Vector3d(1.0, 0.0, 1.2);
+  EXPECT_EQ(planner.plan(g, r9).reason, FailReason::kStartEqualsTarget);
+
+  EXPECT_EQ(planner.plan(mmh::VoxelGrid(), good).reason, FailReason::kNoMap);
+
+  // Every failure carries no trajectory and a readable detail.
+  const PlanResult f = planner.plan(g, r5);
+  EXPECT_FALSE(f.ok);
+  EXPECT_TRUE(f.trajectory.empty());
+  EXPECT_FALSE(f.detail.empty());
+}
+
+TEST(EamPlanner, EnclosedTargetHasNoPath) {
+  mmh::VoxelGrid g = eam_test::freeGrid();
+  // A closed ring of pillars around the target.
+  for (int k = 0; k < 40; ++k) {
+    const double a = 2.0 * M_PI * k / 40.0;
+    eam_test::addPillar(g, 8.0 + 1.2 * std::cos(a), 1.2 * std::sin(a), 0.25);
+  }
+  mmh::eam::Planner planner(params());
+  const PlanResult r = planner.plan(g, request(Vector3d(0, 0, 1.2), Vector3d(8, 0, 1.2), 7.0));
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.reason, FailReason::kNoPath);
+}
+
+TEST(EamVerification, RejectsCollisionsLimitsAndWrongEnds) {
+  mmh::VoxelGrid g = eam_test::freeGrid();
+  eam_test::addPillar(g, 5.0, 0.0, 0.5);
+  const auto p = params();
+  mmh::KinematicState start;
+  start.position = Vector3d(0, 0, 1.2);
+  const Vector3d target(10, 0, 1.2);
+  const mmh::Trajectory through = eam_test::straightLine(start.position, target, 7.0);
+  mmh::eam::Verification v = mmh::eam::verifyTrajectory(through, g, start, target, p);
+  EXPECT_FALSE(v.ok);
+  EXPECT_NE(v.why.find("obstacles"), std::string::npos) << v.why;
+
+  mmh::VoxelGrid empty = eam_test::freeGrid();
+  EXPECT_TRUE(mmh::eam::verifyTrajectory(through, empty, start, target, p).ok);
+  const mmh::Trajectory fast = eam_test::straightLine(start.position, target, 4.0);  // 4.7 m/s
+  v = mmh::eam::verifyTrajectory(fast, empty, start, target, p);
+  EXPECT_FALSE(v.ok);
+  EXPECT_NE(v.why.find("speed"), std::string::npos) << v.why;
+  v = mmh::eam::verifyTrajectory(through, empty, start, Vector3d(10, 1, 1.2), p);
+  EXPECT_FALSE(v.ok);
+  mmh::KinematicState moving = start;
+  moving.velocity.x() = 0.5;
+  EXPECT_FALSE(mmh::eam::verifyTrajectory(through, empty, moving, target, p).ok);
+}
+
+TEST(EamInitialGuess, StraightQuinticRespectsTheLimits) {
+  mmh::KinematicState s;
+  s.position = Vector3d(0, 0, 1);
+  s.velocity = Vector3d(0, 2.5, 0);  // sideways at speed
+  const mmh::Trajectory q = mmh::eam::straightQuintic(s, Vector3d(12, 0, 1), 3.0, 2.0);
+  EXPECT_LE(q.maxSpeed(), 3.0 + 1e-6);
+  EXPECT_LE(q.maxAcceleration(), 2.0 + 1e-6);
+  EXPECT_LT((q.velocity(0.0) - s.velocity).norm(), 1e-12);
+  EXPECT_LT(q.velocity(q.duration()).norm(), 1e-9);
+}
+
+TEST(EamParams, DefaultsLoadAndBadValuesNameTheKey) {
+  const auto p = params();
+  EXPECT_GT(p.lambda_collision_narrow, p.lambda_collision_open);
+  EXPECT_LT(p.lambda_smooth_narrow, p.lambda_smooth_open);
+  try {
+    mmh::eam::loadEamParams(
+        mmh::Config::fromString("vehicle: {max_vel_mps: 3, max_acc_mps2: 2}\n"
+                                "geofence: {min_m: [-1, -1, 0], max_m: [1, 1, 1]}\n"
+                                "awareness: {narrow_probe_dist_m: 0.8}\n"
+                                "eam: {knot_span_s: -1}\n"));
+    FAIL() << "no error";
+  } catch (const mmh::ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("eam.knot_span_s"), std::string::npos) << e.what();
+  }
+}
+
+TEST(EamVerification, ExactMaximaAgreeWithTheGeneralRoutine) {
+  const mmh::VoxelGrid empty = eam_test::freeGrid();
+  auto p = params();
+  p.limit_tolerance_ratio = 100.0;  // only the maxima are of interest here
+  std::mt19937_64 rng(21);
+  std::normal_distribution<double> n(0.0, 0.3);
+  for (int trial = 0; trial < 10; ++trial) {
+    mmh::KinematicState s;
+    s.position = Vector3d(0.5, 0.0, 1.2);
+    s.velocity = Vector3d(n(rng), n(rng), 0.0);
+    const double dt = 0.15 + 0.05 * trial;
+    Eigen::Matrix3Xd q(3, 16);
+    q.leftCols(3) = mmh::eam::UniformBspline::startControlPoints(s, dt);
+    for (int i = 3; i < 13; ++i) q.col(i) = Vector3d(0.5 + 0.6 * i, n(rng), 1.2 + 0.2 * n(rng));
+    const Vector3d target(9.0, 0.0, 1.2);
+    for (int i = 13; i < 16; ++i) q.col(i) = target;
+    const mmh::Trajectory t = mmh::eam::UniformBspline(q, dt).toTrajectory();
+    const mmh::eam::Verification v = mmh::eam::verifyTrajectory(t, empty, s, target, p);
+    ASSERT_TRUE(v.ok) << v.why;
+    EXPECT_NEAR(v.max_speed, t.maxSpeed(), 1e-9 * (1.0 + v.max_speed));
+    EXPECT_NEAR(v.max_acc, t.maxAcceleration(), 1e-9 * (1.0 + v.max_acc));
+  }
+}

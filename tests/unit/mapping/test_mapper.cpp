@@ -1,0 +1,110 @@
+// LOCAL_MAP production: keyframes and deltas rebuild exactly the sender's window, gaps are
+// detected and healed by the next keyframe, deltas stay small in steady flight.
+#include <gtest/gtest.h>
+
+#include "mmh/common/local_map_codec.hpp"
+#include "mmh/mapping/mapper.hpp"
+#include "scan_helpers.hpp"
+
+using Eigen::Vector3d;
+using Result = mmh::LocalMapReceiver::Result;
+
+namespace {
+
+constexpr int64_t kT0 = 1'000'000'000;
+constexpr int64_t kFrameUs = 66'667;
+
+// A flight of 6 m along +x through a forest at 3 m/s (a frame every 0.2 m), turning a little.
+struct Flight {
+  mmh::sim::ForestWorld world = mmh::sim::ForestWorld::generate([] {
+    mmh::ForestSpec spec;
+    spec.density_per_m2 = 0.2;
+    spec.seed = 2;
+    spec.start = Vector3d(-3, 0, 1.2);
+    spec.goal = Vector3d(3, 0, 1.2);
+    spec.clearance_m = 1.0;
+    return spec;
+  }());
+  std::vector<mmh::sim::Scan> scans;
+  Flight() {
+    for (int k = 0; k <= 30; ++k) {
+      const Vector3d p(-3.0 + 0.2 * k, 0.0, 1.2);
+      scans.push_back(mmh::test::scanOf(world, p, 15.0 * std::sin(0.3 * k)));
+    }
+  }
+};
+
+}  // namespace
+
+TEST(Mapper, KeyframesAndDeltasRebuildTheSameMap) {
+  Flight flight;
+  mmh::mapping::MappingParams params;
+  params.window_recenter_m = 0.5;  // several window moves within the flight
+  mmh::mapping::Mapper mapper(params);
+  mmh::LocalMapReceiver receiver;
+  int keyframes = 0, moves = 0;
+  for (size_t k = 0; k < flight.scans.size(); ++k) {
+    const auto& scan = flight.scans[k];
+    mapper.setVehiclePosition(scan.position);
+    const auto r = mapper.processScan(mmh::test::inputOf(scan), kT0 + k * kFrameUs);
+    ASSERT_EQ(r.error, mmh::mapping::ScanError::kNone);
+    EXPECT_EQ(r.map.map_seq, static_cast<int64_t>(k + 1));
+    EXPECT_EQ(r.map.header.utime, kT0 + static_cast<int64_t>(k) * kFrameUs);
+    keyframes += r.keyframe;
+    moves += r.window_moved;
+    std::string why;
+    ASSERT_EQ(receiver.apply(r.map, &why), Result::kApplied) << why;
+    // The receiver's window equals the sender's, cell for cell, after every message.
+    ASSERT_EQ(receiver.grid().originIndex(), mapper.map().windowOrigin());
+    ASSERT_EQ(receiver.grid().rawCells(), mapper.map().windowStates()) << "message " << k;
+  }
+  EXPECT_TRUE(flight.scans.size() > 15);
+  EXPECT_EQ(keyframes, 3);  // the first, then one per second (15 frames)
+  EXPECT_GE(moves, 5);
+  EXPECT_GT(receiver.grid().numOccupied(), 500);
+}
+
+TEST(Mapper, AGapIsDetectedAndTheNextKeyframeHealsIt) {
+  Flight flight;
+  mmh::mapping::MappingParams params;
+  mmh::mapping::Mapper mapper(params);
+  mmh::LocalMapReceiver receiver;
+  std::vector<Result> results;
+  for (size_t k = 0; k < flight.scans.size(); ++k) {
+    const auto& scan = flight.scans[k];
+    mapper.setVehiclePosition(scan.position);
+    const auto r = mapper.processScan(mmh::test::inputOf(scan), kT0 + k * kFrameUs);
+    if (k == 4) continue;  // lost on the network
+    results.push_back(receiver.apply(r.map));
+    if (r.keyframe && k > 4) {
+      EXPECT_EQ(results.back(), Result::kApplied);
+      EXPECT_EQ(receiver.grid().rawCells(), mapper.map().windowStates());
+      break;
+    }
+  }
+  ASSERT_GE(results.size(), 6u);
+  EXPECT_EQ(results[3], Result::kApplied);             // message 4 (k = 3)
+  EXPECT_EQ(results[4], Result::kGap);                 // k = 5 after the lost k = 4
+  EXPECT_EQ(results[5], Result::kWaitingForKeyframe);  // until the keyframe at k = 15
+  EXPECT_EQ(results.back(), Result::kApplied);
+  EXPECT_EQ(receiver.gapsDetected(), 1);
+}
+
+TEST(Mapper, DeltasInSteadyFlightAreSmall) {
+  Flight flight;
+  mmh::mapping::MappingParams params;
+  mmh::mapping::Mapper mapper(params);
+  size_t max_delta = 0, keyframe = 0;
+  for (size_t k = 0; k < flight.scans.size(); ++k) {
+    const auto& scan = flight.scans[k];
+    mapper.setVehiclePosition(scan.position);
+    const auto r = mapper.processScan(mmh::test::inputOf(scan), kT0 + k * kFrameUs);
+    const size_t bytes = static_cast<size_t>(r.map.getEncodedSize());
+    if (r.keyframe)
+      keyframe = std::max(keyframe, bytes);
+    else if (k > 2)
+      max_delta = std::max(max_delta, bytes);
+  }
+  EXPECT_LT(max_delta, 64u * 1024u);
+  EXPECT_GT(keyframe, max_delta);
+}

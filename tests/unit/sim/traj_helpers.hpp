@@ -1,0 +1,37 @@
+// Small trajectories with known answers for the simulator tests.
+#pragma once
+
+#include <memory>
+
+#include "mmh/common/trajectory.hpp"
+
+namespace mmh::test {
+
+// p(t) = p0 + v t for t in [0, duration].
+inline std::shared_ptr<const Trajectory> line(const Eigen::Vector3d& p0, const Eigen::Vector3d& v,
+                                              double duration) {
+  Piece piece;
+  piece.duration = duration;
+  piece.coeffs.col(0) = p0;
+  piece.coeffs.col(1) = v;
+  return std::make_shared<const Trajectory>(std::vector<Piece>{piece});
+}
+
+// Rest-to-rest quintic (minimum jerk) from a to b in time T.
+inline Piece minJerk(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double T) {
+  Piece piece;
+  piece.duration = T;
+  const Eigen::Vector3d d = b - a;
+  piece.coeffs.col(0) = a;
+  piece.coeffs.col(3) = 10.0 * d / std::pow(T, 3);
+  piece.coeffs.col(4) = -15.0 * d / std::pow(T, 4);
+  piece.coeffs.col(5) = 6.0 * d / std::pow(T, 5);
+  return piece;
+}
+
+inline std::shared_ptr<const Trajectory> minJerkTraj(const Eigen::Vector3d& a,
+                                                     const Eigen::Vector3d& b, double T) {
+  return std::make_shared<const Trajectory>(std::vector<Piece>{minJerk(a, b, T)});
+}
+
+}  // namespace mmh::test

@@ -1,0 +1,95 @@
+// Mapping speed and LOCAL_MAP sizes along a flight through a forest (flight_scans.hpp): every
+// scan is filtered, inserted and encoded as the node does. Per-scan wall times are collected and
+// reported as p50 / p90 / max (keyframe scans separately), with the message sizes.
+#include <benchmark/benchmark.h>
+
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
+
+#include "flight_scans.hpp"
+#include "mmh/mapping/mapper.hpp"
+
+namespace {
+
+// CPU time of this thread: the machine is shared, wall time includes waiting for a core.
+double threadCpuMs() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<size_t>(q * (v.size() - 1) + 0.5))];
+}
+
+void BM_MappingFlight(benchmark::State& state) {
+  const double density = state.range(0) / 100.0;
+  const auto kind = state.range(1) ? mmh::sim::SensorKind::kLidar : mmh::sim::SensorKind::kDepth;
+  const int stride = static_cast<int>(state.range(2));
+  mmh::mapping::MappingParams params;
+  const mmh::FlightScans& flight = mmh::flightScans(density, kind, stride);
+  auto mapper = std::make_unique<mmh::mapping::Mapper>(params);
+  std::vector<double> delta_cpu_ms, delta_ms, keyframe_ms, delta_kb, keyframe_kb, points, rays,
+      cells, updated, free_cells;
+  size_t i = 0;
+  int64_t utime = 1'000'000'000;
+  for (auto _ : state) {
+    if (i == flight.scans.size()) {
+      state.PauseTiming();
+      mapper = std::make_unique<mmh::mapping::Mapper>(params);
+      i = 0;
+      state.ResumeTiming();
+    }
+    const mmh::sim::Scan& scan = flight.scans[i++];
+    mmh::mapping::ScanInput in;
+    in.sensor_position = scan.position;
+    in.max_range_m = scan.max_range_m;
+    in.xyz = scan.xyz.data();
+    in.num_points = scan.xyz.size() / 3;
+    utime += 66'667;  // 15 Hz
+    const double c0 = threadCpuMs();
+    const auto t0 = std::chrono::steady_clock::now();
+    mapper->setVehiclePosition(scan.position);
+    const auto result = mapper->processScan(in, utime);
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const double cpu_ms = threadCpuMs() - c0;
+    benchmark::DoNotOptimize(result.map.runs.data());
+    if (!result.keyframe) delta_cpu_ms.push_back(cpu_ms);
+    (result.keyframe ? keyframe_ms : delta_ms).push_back(ms);
+    (result.keyframe ? keyframe_kb : delta_kb).push_back(result.map.getEncodedSize() / 1024.0);
+    points.push_back(static_cast<double>(in.num_points));
+    rays.push_back(static_cast<double>(result.insert.rays));
+    cells.push_back(static_cast<double>(result.insert.cells_free + result.insert.cells_occupied));
+    updated.push_back(static_cast<double>(result.insert.cells_updated));
+    free_cells.push_back(static_cast<double>(result.insert.cells_free));
+  }
+  state.counters["points"] = percentile(points, 0.5);
+  state.counters["rays"] = percentile(rays, 0.5);
+  state.counters["cells"] = percentile(cells, 0.5);
+  state.counters["updated"] = percentile(updated, 0.5);
+  state.counters["free_cells"] = percentile(free_cells, 0.5);
+  state.counters["delta_p50_ms"] = percentile(delta_ms, 0.5);
+  state.counters["delta_cpu_p50_ms"] = percentile(delta_cpu_ms, 0.5);
+  state.counters["delta_p90_ms"] = percentile(delta_ms, 0.9);
+  state.counters["delta_max_ms"] = percentile(delta_ms, 1.0);
+  state.counters["key_p50_ms"] = percentile(keyframe_ms, 0.5);
+  state.counters["delta_p50_KB"] = percentile(delta_kb, 0.5);
+  state.counters["delta_max_KB"] = percentile(delta_kb, 1.0);
+  state.counters["key_max_KB"] = percentile(keyframe_kb, 1.0);
+}
+// Args: density x 100, lidar (0 = depth 160 x 120, 1 = LiDAR 360 x 56), sim.free_ray_stride.
+BENCHMARK(BM_MappingFlight)
+    ->Args({20, 0, 1})
+    ->Args({20, 0, 4})
+    ->Args({0, 0, 1})
+    ->Args({20, 1, 1})
+    ->Args({20, 1, 4})
+    ->Iterations(600)  // three passes over the ~200-frame flight
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
