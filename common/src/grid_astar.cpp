@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <queue>
+#include <functional>
 
 #include "mmh/common/collision_check.hpp"
 
@@ -14,17 +14,10 @@ constexpr uint32_t kClosedBit = 0x80000000u;
 
 // Exact cost of the shortest 26-connected path in free space (in cells).
 double octileDistance(const Eigen::Vector3i& a, const Eigen::Vector3i& b) {
-  std::array<int, 3> d = {std::abs(a.x() - b.x()), std::abs(a.y() - b.y()),
-                          std::abs(a.z() - b.z())};
-  std::sort(d.begin(), d.end());  // d[0] <= d[1] <= d[2]
-  return d[2] + (std::sqrt(2.0) - 1.0) * d[1] + (std::sqrt(3.0) - std::sqrt(2.0)) * d[0];
+  const int x = std::abs(a.x() - b.x()), y = std::abs(a.y() - b.y()), z = std::abs(a.z() - b.z());
+  const int hi = std::max({x, y, z}), lo = std::min({x, y, z}), mid = x + y + z - hi - lo;
+  return hi + (std::sqrt(2.0) - 1.0) * mid + (std::sqrt(3.0) - std::sqrt(2.0)) * lo;
 }
-
-struct OpenEntry {
-  float f;
-  int32_t index;
-  bool operator>(const OpenEntry& o) const { return f > o.f; }
-};
 
 }  // namespace
 
@@ -87,34 +80,54 @@ AStarResult GridAStar::search(const VoxelGrid& grid, const Eigen::Vector3d& star
   }
 
   const int64_t n = grid.numCells();
-  if (static_cast<int64_t>(stamp_.size()) != n) {
-    g_cost_.assign(n, 0.f);
-    parent_.assign(n, -1);
-    stamp_.assign(n, 0);
+  if (static_cast<int64_t>(cells_.size()) != n) {
+    cells_.assign(n, CellState{});
     generation_ = 0;
   }
   if (++generation_ >= kClosedBit) {
-    std::fill(stamp_.begin(), stamp_.end(), 0);
+    for (CellState& c : cells_) c.stamp = 0;
     generation_ = 1;
   }
-  auto seen = [&](int64_t i) { return (stamp_[i] & ~kClosedBit) == generation_; };
-  auto closed = [&](int64_t i) { return stamp_[i] == (generation_ | kClosedBit); };
+  auto closed = [&](int64_t i) { return cells_[i].stamp == (generation_ | kClosedBit); };
 
   // Slight tie-breaking towards the goal keeps the search from fanning out on plateaus.
   const double h_weight = std::max(1.0, options.heuristic_weight) * (1.0 + 1e-3);
-  std::priority_queue<OpenEntry, std::vector<OpenEntry>, std::greater<OpenEntry>> open;
-  stamp_[s_idx] = generation_;
-  g_cost_[s_idx] = 0.f;
-  parent_[s_idx] = -1;
-  open.push({static_cast<float>(h_weight * octileDistance(s, g)), static_cast<int32_t>(s_idx)});
+  // The open list is a binary heap in a vector kept across searches (no reallocation).
+  std::vector<GridAStar::OpenEntry>& open = open_;
+  open.clear();
+  const auto heap_order = std::greater<GridAStar::OpenEntry>();
+  auto push = [&](float f, int64_t index) {
+    open.push_back({f, static_cast<int32_t>(index)});
+    std::push_heap(open.begin(), open.end(), heap_order);
+  };
+  cells_[s_idx] = {0.f, -1, generation_};
+  push(static_cast<float>(h_weight * octileDistance(s, g)), s_idx);
+
+  // The 26 neighbour offsets with their step lengths.
+  struct Neighbour {
+    Eigen::Vector3i d;
+    int64_t delta;
+    float step;
+  };
+  std::array<Neighbour, 26> neighbours;
+  int count = 0;
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        if (dx == 0 && dy == 0 && dz == 0) continue;
+        neighbours[count++] = {Eigen::Vector3i(dx, dy, dz),
+                               dx + int64_t{grid.size().x()} * (dy + int64_t{grid.size().y()} * dz),
+                               static_cast<float>(std::sqrt(double(dx * dx + dy * dy + dz * dz)))};
+      }
 
   bool found = false;
   while (!open.empty()) {
-    const OpenEntry top = open.top();
-    open.pop();
+    std::pop_heap(open.begin(), open.end(), heap_order);
+    const OpenEntry top = open.back();
+    open.pop_back();
     const int64_t cur = top.index;
     if (closed(cur)) continue;
-    stamp_[cur] = generation_ | kClosedBit;
+    cells_[cur].stamp = generation_ | kClosedBit;
     if (cur == g_idx) {
       found = true;
       break;
@@ -124,26 +137,19 @@ AStarResult GridAStar::search(const VoxelGrid& grid, const Eigen::Vector3d& star
       return result;
     }
     const Eigen::Vector3i c = grid.localFromLinear(cur);
-    const float gc = g_cost_[cur];
-    for (int dz = -1; dz <= 1; ++dz) {
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-          if (dx == 0 && dy == 0 && dz == 0) continue;
-          const Eigen::Vector3i nb = c + Eigen::Vector3i(dx, dy, dz);
-          if (!in_bounds(nb)) continue;
-          const int64_t ni = grid.linearIndex(nb);
-          if (closed(ni) || !traversable(nb, ni)) continue;
-          float step = static_cast<float>(std::sqrt(double(dx * dx + dy * dy + dz * dz)));
-          if (options.extra_step_cost) step += static_cast<float>(options.extra_step_cost(nb, ni));
-          const float ng = gc + step;
-          if (seen(ni) && g_cost_[ni] <= ng) continue;
-          stamp_[ni] = generation_;
-          g_cost_[ni] = ng;
-          parent_[ni] = static_cast<int32_t>(cur);
-          open.push({static_cast<float>(ng + h_weight * octileDistance(nb, g)),
-                     static_cast<int32_t>(ni)});
-        }
-      }
+    const float gc = cells_[cur].g;
+    for (const Neighbour& n : neighbours) {
+      const Eigen::Vector3i nb = c + n.d;
+      if (!in_bounds(nb)) continue;
+      const int64_t ni = cur + n.delta;
+      if (closed(ni) || !traversable(nb, ni)) continue;
+      float step = n.step;
+      if (options.extra_step_cost) step += static_cast<float>(options.extra_step_cost(nb, ni));
+      const float ng = gc + step;
+      CellState& cell = cells_[ni];
+      if ((cell.stamp & ~kClosedBit) == generation_ && cell.g <= ng) continue;
+      cell = {ng, static_cast<int32_t>(cur), generation_};
+      push(static_cast<float>(ng + h_weight * octileDistance(nb, g)), ni);
     }
   }
   if (!found) {
@@ -151,7 +157,7 @@ AStarResult GridAStar::search(const VoxelGrid& grid, const Eigen::Vector3d& star
     return result;
   }
   std::vector<Eigen::Vector3d> reversed;
-  for (int64_t i = g_idx; i >= 0; i = parent_[i]) {
+  for (int64_t i = g_idx; i >= 0; i = cells_[i].parent) {
     reversed.push_back(grid.centerOfLocal(grid.localFromLinear(i)));
     if (i == s_idx) break;
   }

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <map>
 #include <random>
 
@@ -25,6 +26,14 @@ using mmh::eam_bench::EamScenario;
 using mmh::eam_bench::EamSet;
 using mmh::eam_bench::makeSet;
 using mmh::eam_bench::setPillar;
+
+// CPU time of this thread: unlike wall-clock time, not inflated when other processes share
+// the cores.
+double threadCpuUs() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec * 1e6 + ts.tv_nsec * 1e-3;
+}
 
 double percentile(std::vector<double> v, double q) {
   if (v.empty()) return 0.0;
@@ -43,7 +52,7 @@ void BM_EamNewPillar(benchmark::State& state) {
   mmh::eam::Planner planner(benchParams());
   const double vmax = planner.params().max_vel_mps, amax = planner.params().max_acc_mps2;
 
-  std::vector<double> call_us;
+  std::vector<double> call_us, cpu_us, split[4], evaluations;
   std::vector<int> ok(set.scenarios.size(), -1), narrow(set.scenarios.size(), 0);
   std::vector<double> v_excess, a_excess;
   std::map<int, int> failures;
@@ -68,11 +77,19 @@ void BM_EamNewPillar(benchmark::State& state) {
     req.start.position = sc.start;
     req.target = sc.target;
     req.reference = sc.reference;
+    const double c0 = threadCpuUs();
     const auto t0 = std::chrono::steady_clock::now();
     const mmh::eam::PlanResult r = planner.plan(grid, req);
     const auto t1 = std::chrono::steady_clock::now();
+    const double c1 = threadCpuUs();
     benchmark::DoNotOptimize(r);
     call_us.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
+    cpu_us.push_back(c1 - c0);
+    split[0].push_back(r.stats.astar_us);
+    split[1].push_back(r.stats.optimize_us);
+    split[2].push_back(r.stats.check_us);
+    split[3].push_back(r.stats.verify_us);
+    evaluations.push_back(r.stats.evaluations);
     if (ok[k] < 0) {
       ok[k] = r.ok ? 1 : 0;
       narrow[k] = r.narrow ? 1 : 0;
@@ -102,6 +119,14 @@ void BM_EamNewPillar(benchmark::State& state) {
   state.counters["p50_us"] = percentile(call_us, 0.5);
   state.counters["p90_us"] = percentile(call_us, 0.9);
   state.counters["max_us"] = percentile(call_us, 1.0);
+  state.counters["cpu_p50_us"] = percentile(cpu_us, 0.5);
+  // Median time of each part (wall clock inside the planner) and of L-BFGS evaluations.
+  state.counters["astar_p50_us"] = percentile(split[0], 0.5);
+  state.counters["optimize_p50_us"] = percentile(split[1], 0.5);
+  state.counters["check_p50_us"] = percentile(split[2], 0.5);
+  state.counters["verify_p50_us"] = percentile(split[3], 0.5);
+  state.counters["evals_p50"] = percentile(evaluations, 0.5);
+  state.counters["cpu_p90_us"] = percentile(cpu_us, 0.9);
   state.counters["v_excess_p50"] = percentile(v_excess, 0.5);
   state.counters["v_excess_max"] = percentile(v_excess, 1.0);
   state.counters["a_excess_p50"] = percentile(a_excess, 0.5);

@@ -16,6 +16,7 @@ void EamNode::onLocalMap(const local_map_t& msg) {
   std::string why;
   switch (map_.apply(msg, &why)) {
     case LocalMapReceiver::Result::kApplied:
+      if (map_.lastWasKeyframe()) planner_.prepare(map_.grid());  // cheap unless the size changed
       break;
     case LocalMapReceiver::Result::kGap:
       ctx_.reject("map_gaps", "LOCAL_MAP gap: " + why);

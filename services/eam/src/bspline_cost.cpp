@@ -23,9 +23,15 @@ double collisionPenalty(double c, double clearance, double* derivative) {
 
 CostTerms BsplineCost::evaluate(const Eigen::Matrix3Xd& q, double dt, Eigen::Matrix3Xd* grad,
                                 int first, int last) const {
-  if (grad) grad->setZero(3, q.cols());
+  const int n = static_cast<int>(q.cols());
   first = std::max(first, 0);
-  last = std::min(last, static_cast<int>(q.cols()) - 1);
+  last = std::min(last, n - 1);
+  if (grad) {
+    // Terms that involve [first, last] write at most 3 columns beyond it.
+    if (grad->cols() != n) grad->resize(3, n);
+    const int lo = std::max(0, first - 3), hi = std::min(n - 1, last + 3);
+    grad->middleCols(lo, hi - lo + 1).setZero();
+  }
   CostTerms t;
   t.smooth = smoothness(q, dt, grad, weights_.smooth, first, last);
   t.collision = collision(q, grad, weights_.collision, first, last);

@@ -9,8 +9,8 @@ namespace mmh::eam {
 namespace {
 
 constexpr int kFixed = 3;  // control points fixed at each end
-constexpr int kBand = 3;
-constexpr int kLbfgsMemory = 4;  // a control point shares jerk terms with 3 neighbours on each side
+constexpr int kBand = 3;   // a control point shares jerk terms with 3 neighbours on each side
+constexpr int kLbfgsMemory = 4;
 
 // Cholesky factor L (lower, bandwidth 3) of the smoothness Hessian over the free control points
 // (the same for x, y and z). The optimiser works on y = L^T (Q - Q_start): there the smoothness
@@ -42,24 +42,28 @@ class SmoothnessPreconditioner {
         }
       }
     }
+    inv_diag_.resize(n);
+    for (int i = 0; i < n; ++i) inv_diag_[i] = 1.0 / at(i, i);
   }
-  // z = L^{-T} y (back substitution), per axis: y and z are 3 x n.
-  void applyInverseTransposed(const double* y, double* z) const {
+  // z = L^{-T} y (back substitution), per axis: y and z hold `axes` values per point.
+  void applyInverseTransposed(const double* y, double* z, int axes) const {
     for (int i = n_ - 1; i >= 0; --i) {
-      for (int a = 0; a < 3; ++a) {
-        double s = y[3 * i + a];
-        for (int k = i + 1; k <= std::min(n_ - 1, i + kBand); ++k) s -= at(k, i) * z[3 * k + a];
-        z[3 * i + a] = s / at(i, i);
+      const int kmax = std::min(n_ - 1, i + kBand);
+      for (int a = 0; a < axes; ++a) {
+        double s = y[axes * i + a];
+        for (int k = i + 1; k <= kmax; ++k) s -= at(k, i) * z[axes * k + a];
+        z[axes * i + a] = s * inv_diag_[i];
       }
     }
   }
   // w = L^{-1} g (forward substitution), per axis.
-  void applyInverse(const double* g, double* w) const {
+  void applyInverse(const double* g, double* w, int axes) const {
     for (int i = 0; i < n_; ++i) {
-      for (int a = 0; a < 3; ++a) {
-        double s = g[3 * i + a];
-        for (int k = std::max(0, i - kBand); k < i; ++k) s -= at(i, k) * w[3 * k + a];
-        w[3 * i + a] = s / at(i, i);
+      const int kmin = std::max(0, i - kBand);
+      for (int a = 0; a < axes; ++a) {
+        double s = g[axes * i + a];
+        for (int k = kmin; k < i; ++k) s -= at(i, k) * w[axes * k + a];
+        w[axes * i + a] = s * inv_diag_[i];
       }
     }
   }
@@ -69,6 +73,7 @@ class SmoothnessPreconditioner {
   double at(int i, int j) const { return l_[static_cast<size_t>(i) * (kBand + 1) + (i - j)]; }
   int n_ = 0;
   std::vector<double> l_;
+  std::vector<double> inv_diag_;
 };
 
 struct Problem {
@@ -81,6 +86,7 @@ struct Problem {
   Eigen::Matrix3Xd grad;
   std::vector<double> work, work2;
   double dt;
+  int axes = 3;        // optimised coordinates per point: x, y (, z)
   double scale = 1.0;  // objective multiplier that makes the initial gradient O(1)
   int evaluations = 0;
   double best_f = std::numeric_limits<double>::infinity();
@@ -89,10 +95,11 @@ struct Problem {
 
 // Control points from the optimisation variables y.
 void scatter(Problem& pb, const double* y) {
-  pb.precond->applyInverseTransposed(y, pb.work.data());
+  const int axes = pb.axes;
+  pb.precond->applyInverseTransposed(y, pb.work.data(), axes);
   const std::vector<int>& idx = *pb.free_points;
   for (size_t k = 0; k < idx.size(); ++k) {
-    pb.q.col(idx[k]) = pb.q_start.col(k) + Eigen::Vector3d(pb.work.data() + 3 * k);
+    for (int a = 0; a < axes; ++a) pb.q(a, idx[k]) = pb.q_start(a, k) + pb.work[axes * k + a];
   }
 }
 
@@ -103,10 +110,11 @@ double objective(unsigned n, const double* y, double* g, void* data) {
       pb->cost->evaluate(pb->q, pb->dt, g ? &pb->grad : nullptr, pb->first, pb->last);
   if (g) {
     const std::vector<int>& idx = *pb->free_points;
+    const int axes = pb->axes;
     for (size_t k = 0; k < idx.size(); ++k) {
-      Eigen::Map<Eigen::Vector3d>(pb->work2.data() + 3 * k) = pb->grad.col(idx[k]);
+      for (int a = 0; a < axes; ++a) pb->work2[axes * k + a] = pb->grad(a, idx[k]);
     }
-    pb->precond->applyInverse(pb->work2.data(), g);
+    pb->precond->applyInverse(pb->work2.data(), g, axes);
     for (unsigned i = 0; i < n; ++i) g[i] *= pb->scale;
   }
   ++pb->evaluations;
@@ -121,7 +129,7 @@ double objective(unsigned n, const double* y, double* g, void* data) {
 
 OptimizeResult optimizeControlPoints(UniformBspline& spline, const BsplineCost& cost,
                                      const std::vector<int>& free_points, int max_evaluations,
-                                     double ftol_rel) {
+                                     double ftol_rel, bool keep_altitude) {
   OptimizeResult result;
   const int n_cols = spline.numControlPoints();
   for (size_t k = 0; k < free_points.size(); ++k) {
@@ -151,10 +159,11 @@ OptimizeResult optimizeControlPoints(UniformBspline& spline, const BsplineCost& 
   pb.q_start.resize(3, m);
   for (int k = 0; k < m; ++k) pb.q_start.col(k) = pb.q.col(free_points[k]);
   pb.grad.resize(3, n_cols);
-  pb.work.assign(3 * m, 0.0);
-  pb.work2.assign(3 * m, 0.0);
+  pb.axes = keep_altitude ? 2 : 3;
+  pb.work.assign(pb.axes * m, 0.0);
+  pb.work2.assign(pb.axes * m, 0.0);
   pb.dt = dt;
-  const unsigned n = static_cast<unsigned>(3 * m);
+  const unsigned n = static_cast<unsigned>(pb.axes * m);
   std::vector<double> y(n, 0.0);
 
   // NLopt's L-BFGS takes its first step from the raw gradient; when it is huge (deep
@@ -202,10 +211,10 @@ OptimizeResult optimizeControlPoints(UniformBspline& spline, const BsplineCost& 
 }
 
 OptimizeResult optimizeControlPoints(UniformBspline& spline, const BsplineCost& cost,
-                                     int max_evaluations, double ftol_rel) {
+                                     int max_evaluations, double ftol_rel, bool keep_altitude) {
   std::vector<int> all;
   for (int i = kFixed; i < spline.numControlPoints() - kFixed; ++i) all.push_back(i);
-  return optimizeControlPoints(spline, cost, all, max_evaluations, ftol_rel);
+  return optimizeControlPoints(spline, cost, all, max_evaluations, ftol_rel, keep_altitude);
 }
 
 }  // namespace mmh::eam

@@ -82,13 +82,19 @@ bool awayFromObstacle(const VoxelGrid& grid, const Eigen::Vector3d& x, const Eig
   const double reach = grid.inflationRadius() + res;
   const int r = static_cast<int>(std::ceil(reach / res));
   const Eigen::Vector3i c = grid.localIndexOf(x);
+  const Eigen::Vector3i& size = grid.size();
+  // Offset of x from its cell's centre; the offset from a neighbour's centre follows by adding
+  // whole voxels. Rows along x are contiguous in memory.
+  const Eigen::Vector3d x_local = x - grid.centerOfLocal(c);
+  const int x_lo = std::max(0, c.x() - r), x_hi = std::min(size.x() - 1, c.x() + r);
   Eigen::Vector3d n = Eigen::Vector3d::Zero();
-  for (int dz = -r; dz <= r; ++dz) {
-    for (int dy = -r; dy <= r; ++dy) {
-      for (int dx = -r; dx <= r; ++dx) {
-        const Eigen::Vector3i cell = c + Eigen::Vector3i(dx, dy, dz);
-        if (grid.at(cell) != Occupancy::kOccupied) continue;
-        const Eigen::Vector3d diff = x - grid.centerOfLocal(cell);
+  for (int z = std::max(0, c.z() - r); z <= std::min(size.z() - 1, c.z() + r); ++z) {
+    for (int y = std::max(0, c.y() - r); y <= std::min(size.y() - 1, c.y() + r); ++y) {
+      const int64_t row = grid.linearIndex(Eigen::Vector3i(0, y, z));
+      for (int xi = x_lo; xi <= x_hi; ++xi) {
+        if (grid.atLinear(row + xi) != Occupancy::kOccupied) continue;
+        const Eigen::Vector3d diff =
+            x_local - res * Eigen::Vector3d(xi - c.x(), y - c.y(), z - c.z());
         const double d = diff.norm();
         if (d >= reach || d < 1e-9) continue;
         n += diff / d * (reach - d) * (reach - d);
@@ -106,12 +112,12 @@ bool awayFromObstacle(const VoxelGrid& grid, const Eigen::Vector3d& x, const Eig
 }  // namespace
 
 std::vector<CollisionStretch> findCollisionStretches(const UniformBspline& spline,
-                                                     const VoxelGrid& grid,
-                                                     double escape_radius_m) {
+                                                     const VoxelGrid& grid, double escape_radius_m,
+                                                     double step_m) {
   std::vector<CollisionStretch> out;
   const Eigen::Matrix3Xd& q = spline.controlPoints();
   const double dt = spline.knotSpan();
-  const double step = 0.25 * grid.resolution();  // as fine as the final verification
+  const double step = step_m;
   const Eigen::Vector3d start = spline.evaluate(0, 0.0);
   bool escaping = true;  // still in the leading part that may leave the inflated margin
   bool in_run = false;
@@ -122,9 +128,14 @@ std::vector<CollisionStretch> findCollisionStretches(const UniformBspline& splin
   const int segments = spline.numSegments();
   for (int i = 0; i < segments; ++i) {
     const Eigen::Matrix<double, 3, 4> c = segmentCoeffs(q, i, dt);
-    const double polygon = (q.col(i + 1) - q.col(i)).norm() + (q.col(i + 2) - q.col(i + 1)).norm() +
-                           (q.col(i + 3) - q.col(i + 2)).norm();
-    const int n = std::max(1, static_cast<int>(std::ceil(polygon / step)));
+    // Arc length bound: the length of the interval's Bezier control polygon (P0..P3 from
+    // Q_i..Q_{i+3}), which the curve never exceeds.
+    const Eigen::Vector3d p0 = (q.col(i) + 4.0 * q.col(i + 1) + q.col(i + 2)) / 6.0;
+    const Eigen::Vector3d p1 = (2.0 * q.col(i + 1) + q.col(i + 2)) / 3.0;
+    const Eigen::Vector3d p2 = (q.col(i + 1) + 2.0 * q.col(i + 2)) / 3.0;
+    const Eigen::Vector3d p3 = (q.col(i + 1) + 4.0 * q.col(i + 2) + q.col(i + 3)) / 6.0;
+    const double length = (p1 - p0).norm() + (p2 - p1).norm() + (p3 - p2).norm();
+    const int n = std::max(1, static_cast<int>(std::ceil(length / step)));
     const int last = (i + 1 == segments) ? n : n - 1;  // the end point only once, at the end
     for (int k = 0; k <= last; ++k) {
       const double s = static_cast<double>(k) / n;
@@ -135,9 +146,12 @@ std::vector<CollisionStretch> findCollisionStretches(const UniformBspline& splin
       sample.s = s;
       sample.point = c.col(0) + tl * (c.col(1) + tl * (c.col(2) + tl * c.col(3)));
       sample.velocity = c.col(1) + tl * (2.0 * c.col(2) + tl * 3.0 * c.col(3));
-      bool blocked = grid.isBlockedPoint(sample.point);
+      const Eigen::Vector3i cell = grid.localIndexOf(sample.point);
+      const bool in_window = grid.inWindow(cell);
+      const int64_t idx = in_window ? grid.linearIndex(cell) : 0;
+      bool blocked = in_window && grid.isBlockedLinear(idx);
       if (escaping) {
-        if (blocked && !grid.isOccupiedPoint(sample.point) &&
+        if (blocked && grid.atLinear(idx) != Occupancy::kOccupied &&
             (sample.point - start).norm() <= escape_radius_m) {
           blocked = false;  // leaving the margin the start is in
         } else {

@@ -24,12 +24,15 @@ EamParams loadEamParams(const Config& config) {
   p.merge_gap_s = config.getDouble("eam.merge_gap_s", 0.0, 100.0);
   p.max_rebound_rounds = config.getInt("eam.max_rebound_rounds", 1, 50);
   p.max_refine_rounds = config.getInt("eam.max_refine_rounds", 0, 20);
+  p.max_restarts = config.getInt("eam.max_restarts", 0, 10);
   p.max_iterations = config.getInt("eam.max_iterations", 10, 100000);
   p.optimizer_ftol_rel = config.getDouble("eam.optimizer_ftol_rel", 1e-12, 0.5);
   p.limit_tolerance_ratio = config.getDouble("eam.limit_tolerance_ratio", 0.0, 0.5);
   p.astar_max_expansions = config.getInt("eam.astar_max_expansions", 1000, 100000000);
   p.astar_slot_width_m = config.getDouble("eam.astar_slot_width_m", 0.0, 5.0);
   p.astar_slot_cost = config.getDouble("eam.astar_slot_cost", 0.0, 1000.0);
+  p.astar_heuristic_weight = config.getDouble("eam.astar_heuristic_weight", 1.0, 10.0);
+  p.astar_box_margin_m = config.getDouble("eam.astar_box_margin_m", 0.1, 1000.0);
   p.astar_slab_margin_m = config.getDouble("eam.astar_slab_margin_m", 0.0, 100.0);
   p.start_escape_radius_m = config.getDouble("eam.start_escape_radius_m", 0.0, 2.0);
   return p;

@@ -5,9 +5,9 @@
 #include <cmath>
 
 #include "mmh/common/narrow_space.hpp"
-#include "mmh/common/polynomial.hpp"
 #include "mmh/eam/bspline_optimizer.hpp"
 #include "mmh/eam/collision_pairs.hpp"
+#include "mmh/eam/cubic_roots.hpp"
 #include "mmh/eam/initial_guess.hpp"
 #include "mmh/eam/verification.hpp"
 
@@ -20,8 +20,14 @@ constexpr double kRefineAbove = 1.0 + 1e-3;
 // Time re-allocation overshoots slightly so that the start region, which does not scale, rarely
 // needs a second one.
 constexpr double kRefineMargin = 1.01;
-// While collisions remain, time is re-allocated only when the limits are broken by more than this.
+// While collisions remain, time is re-allocated only when the limits are broken by more than
+// this: the detours need more time than the guess had, and without it the feasibility term
+// keeps pulling the curve back into the obstacles.
 constexpr double kRefineWhileColliding = 1.1;
+// Sample spacing (in voxels) of the collision check: a quarter voxel like the verification,
+// and a tenth after the verification found a graze the coarser check missed.
+constexpr double kCheckStep = 0.5;
+constexpr double kFineCheckStep = 0.1;
 // Collision weight multiplier when collisions remain but no new pair could be made.
 constexpr double kCollisionBoost = 4.0;
 
@@ -42,6 +48,34 @@ double limitRatio(const UniformBspline& spline, const EamParams& p) {
   double vmax = 0.0, amax = 0.0;
   bsplineMaxima(spline, &vmax, &amax);
   return std::max(vmax / p.max_vel_mps, std::sqrt(amax / p.max_acc_mps2));
+}
+
+CostSettings costSettings(const EamParams& p) {
+  CostSettings s;
+  s.max_vel_mps = p.max_vel_mps;
+  s.max_acc_mps2 = p.max_acc_mps2;
+  s.box_min = p.geofence_min;
+  s.box_max = p.geofence_max;
+  return s;
+}
+
+// Slower everywhere: the same control points on a longer knot span (the same curve, speeds /
+// ratio, accelerations / ratio^2), except the first three, which must keep reproducing the
+// start state.
+void reallocateTime(UniformBspline& spline, double ratio, const KinematicState& start) {
+  spline.setKnotSpan(spline.knotSpan() * ratio * kRefineMargin);
+  spline.controlPoints().leftCols(3) = UniformBspline::startControlPoints(start, spline.knotSpan());
+}
+
+// Integral of |jerk|^2 over pieces of degree <= 3 (jerk 6 c3, constant per piece); exact. The
+// general routine of Trajectory builds polynomial products and costs far more.
+double cubicJerkEnergy(const Trajectory& traj) {
+  double e = 0.0;
+  for (const Piece& p : traj.pieces()) {
+    if (!p.coeffs.rightCols(kMaxPolyOrder - 4).isZero(0.0)) return traj.jerkEnergy();
+    e += 36.0 * p.coeffs.col(3).squaredNorm() * p.duration;
+  }
+  return e;
 }
 
 // Runs f and adds its wall-clock time (us) to *acc: measurement only, never a decision.
@@ -78,25 +112,59 @@ void warmStartFromGuide(const std::vector<Eigen::Vector3d>& guide, double t0, do
   }
 }
 
+// Stretches closer than gap_s (in time) are merged: they share one A* search, so that their
+// detours agree (one side of an obstacle group rather than a slalom through it).
+std::vector<CollisionStretch> mergeStretches(const std::vector<CollisionStretch>& stretches,
+                                             double gap_s) {
+  std::vector<CollisionStretch> groups;
+  for (const CollisionStretch& s : stretches) {
+    if (!groups.empty() && s.blocked.front().t - groups.back().blocked.back().t < gap_s) {
+      CollisionStretch& g = groups.back();
+      g.blocked.insert(g.blocked.end(), s.blocked.begin(), s.blocked.end());
+      g.after = s.after;
+      g.t_after = s.t_after;
+    } else {
+      groups.push_back(s);
+    }
+  }
+  return groups;
+}
+
 }  // namespace
 
-// Does the cell lie in a slot: inflated obstacles within `reach` voxels on both sides along x, y
-// or z, or within `diag_reach` on both sides along a horizontal diagonal?
-bool inSlot(const VoxelGrid& grid, const Eigen::Vector3i& c, int reach, int diag_reach) {
-  const int axes[5][4] = {{1, 0, 0, reach},
-                          {0, 1, 0, reach},
-                          {0, 0, 1, reach},
-                          {1, 1, 0, diag_reach},
-                          {1, -1, 0, diag_reach}};
-  for (const auto& a : axes) {
-    const Eigen::Vector3i d(a[0], a[1], a[2]);
-    bool plus = false, minus = false;
-    for (int k = 1; k <= a[3] && !plus; ++k) plus = grid.isBlocked(c + k * d);
-    for (int k = 1; k <= a[3] && !minus; ++k) minus = grid.isBlocked(c - k * d);
-    if (plus && minus) return true;
+// State of one attempt: the spline being shaped and what the rounds have learnt about it.
+struct Planner::Attempt {
+  UniformBspline spline;
+  PairSet pairs;
+  std::vector<char> free_mask;  // control points within window_margin_s of a collision
+  double boost = 1.0;           // extra factor on the collision weight
+  int round = 0;                // optimisations run in this attempt
+  int refines = 0;              // time re-allocations in this attempt
+  double check_step = 0.0;      // collision check sample spacing (m)
+  bool restart = false;         // first round: one guide for all collisions, slots avoided
+};
+
+namespace {
+
+// Nothing pushes the free control points vertically: every anchor pair repels horizontally
+// (vertical obstacles, the common case) and the points keep clear of the geofence's floor and
+// ceiling. The altitude profile of the guess is then kept and only x and y are optimised, a
+// third fewer variables (the jerk energy is separable per axis, so z stays as smooth as the
+// guess was).
+bool horizontalProblem(const PairSet& pairs, const Eigen::Matrix3Xd& q,
+                       const std::vector<int>& free_points, const EamParams& p) {
+  constexpr double kFlat = 1e-3;
+  for (int i : free_points) {
+    for (const AnchorPair& pair : pairs[i]) {
+      if (std::abs(pair.v.z()) > kFlat) return false;
+    }
+    const double z = q(2, i);
+    if (z < p.geofence_min.z() + 0.05 || z > p.geofence_max.z() - 0.05) return false;
   }
-  return false;
+  return true;
 }
+
+}  // namespace
 
 const char* toString(FailReason reason) {
   switch (reason) {
@@ -126,76 +194,6 @@ const char* toString(FailReason reason) {
   return "?";
 }
 
-AStarResult Planner::findGuide(const VoxelGrid& grid, const Eigen::Vector3d& from,
-                               const Eigen::Vector3d& goal, double z_lo, double z_hi,
-                               PlanStats* stats) {
-  const EamParams& P = params_;
-  AStarOptions band;
-  band.max_expansions = P.astar_max_expansions;
-  band.min_bound = P.geofence_min;
-  band.max_bound = P.geofence_max;
-  band.start_escape_radius_m = P.start_escape_radius_m;
-  // First a slab around the stretch's altitude (a detour around a new obstacle is almost always
-  // sideways, and the slab keeps A* from fanning out over every layer), then the whole band.
-  AStarOptions slab = band;
-  slab.min_bound.z() = std::max(P.geofence_min.z(), z_lo - P.astar_slab_margin_m);
-  slab.max_bound.z() = std::min(P.geofence_max.z(), z_hi + P.astar_slab_margin_m);
-  auto search = [&](const AStarOptions& o) {
-    AStarResult res = timed(&stats->astar_us, [&] { return astar_.search(grid, from, goal, o); });
-    ++stats->astar_calls;
-    stats->astar_expansions += res.expansions;
-    return res;
-  };
-  bool in_slab = true;
-  AStarResult path = search(slab);
-  if (!path.ok() && path.status != AStarResult::Status::kOutOfWindow) {
-    in_slab = false;
-    path = search(band);
-  }
-  if (!path.ok()) return path;
-  // A shortest path threads gaps one or two voxels wide that no smooth curve at speed can
-  // follow; if this one does, search again with a cost on slot cells, which takes a wider way
-  // when there is one within a few voxels of detour.
-  const int reach =
-      std::max(1, static_cast<int>(std::lround(P.astar_slot_width_m / grid.resolution())));
-  const int diag_reach = std::max(
-      1,
-      static_cast<int>(std::lround(P.astar_slot_width_m / (std::sqrt(2.0) * grid.resolution()))));
-  bool threads_slot = false;
-  for (size_t k = 1; k + 1 < path.path.size() && !threads_slot; ++k) {
-    threads_slot = inSlot(grid, grid.localIndexOf(path.path[k]), reach, diag_reach);
-  }
-  if (threads_slot && P.astar_slot_cost > 0.0) {
-    if (static_cast<int64_t>(slot_memo_.size()) != grid.numCells())
-      slot_memo_.assign(grid.numCells(), 0);
-    AStarOptions o = in_slab ? slab : band;
-    o.extra_step_cost = [&](const Eigen::Vector3i& c, int64_t idx) {
-      int8_t& m = slot_memo_[idx];
-      if (m == 0) {
-        m = inSlot(grid, c, reach, diag_reach) ? 1 : 2;
-        slot_touched_.push_back(idx);
-      }
-      return m == 1 ? P.astar_slot_cost : 0.0;
-    };
-    AStarResult wide = search(o);
-    for (int64_t idx : slot_touched_) slot_memo_[idx] = 0;
-    slot_touched_.clear();
-    if (wide.ok()) path = std::move(wide);
-  }
-  if (in_slab) {
-    // Within the slab, the altitudes of the cell centres (a voxel apart) are quantisation, not
-    // intent: ramp them between the end points so that they do not tilt the repulsive
-    // directions of points the guide passes close to.
-    const double total = pathLength(path.path);
-    double along = 0.0;
-    for (size_t k = 1; k + 1 < path.path.size(); ++k) {
-      along += (path.path[k] - path.path[k - 1]).norm();
-      path.path[k].z() = from.z() + (goal.z() - from.z()) * (total > 0.0 ? along / total : 0.0);
-    }
-  }
-  return path;
-}
-
 void bsplineMaxima(const UniformBspline& spline, double* max_speed, double* max_acc) {
   const Eigen::Matrix3Xd& q = spline.controlPoints();
   const double dt = spline.knotSpan();
@@ -203,8 +201,15 @@ void bsplineMaxima(const UniformBspline& spline, double* max_speed, double* max_
   for (int i = 0; i + 2 < q.cols(); ++i) {
     a2 = std::max(a2, (q.col(i + 2) - 2.0 * q.col(i + 1) + q.col(i)).squaredNorm());
   }
-  PolyCoeffs d(4);
+  // The velocity of interval i is a quadratic B-spline with control points (Q_{k+1} - Q_k)/dt,
+  // k = i..i+2, and lies in their convex hull: an interval whose control velocities are all
+  // slower than the fastest speed found so far cannot hold the maximum and is skipped.
+  std::vector<double> cv2(q.cols() > 1 ? q.cols() - 1 : 0);
+  for (int k = 0; k + 1 < q.cols(); ++k) cv2[k] = (q.col(k + 1) - q.col(k)).squaredNorm();
+  const double inv_dt2 = 1.0 / (dt * dt);
   for (int i = 0; i + 3 < q.cols(); ++i) {
+    const double bound = std::max({cv2[i], cv2[i + 1], cv2[i + 2]}) * inv_dt2;
+    if (bound <= v2) continue;
     // v(t) = b0 + b1 t + b2 t^2 on [0, dt]; stationary points of |v|^2 solve v . v' = 0.
     const Eigen::Vector3d b0 = (q.col(i + 2) - q.col(i)) / (2.0 * dt);
     const Eigen::Vector3d b1 = (q.col(i) - 2.0 * q.col(i + 1) + q.col(i + 2)) / (dt * dt);
@@ -212,11 +217,158 @@ void bsplineMaxima(const UniformBspline& spline, double* max_speed, double* max_
         (-q.col(i) + 3.0 * q.col(i + 1) - 3.0 * q.col(i + 2) + q.col(i + 3)) / (2.0 * dt * dt * dt);
     auto speed2 = [&](double t) { return (b0 + t * (b1 + t * b2)).squaredNorm(); };
     v2 = std::max({v2, speed2(0.0), speed2(dt)});
-    d << b0.dot(b1), b1.dot(b1) + 2.0 * b0.dot(b2), 3.0 * b1.dot(b2), 2.0 * b2.dot(b2);
-    for (double t : polyRealRoots(d, 0.0, dt)) v2 = std::max(v2, speed2(t));
+    double roots[3];
+    const int n = cubicRoots(2.0 * b2.dot(b2), 3.0 * b1.dot(b2), b1.dot(b1) + 2.0 * b0.dot(b2),
+                             b0.dot(b1), roots);
+    for (int k = 0; k < n; ++k) {
+      if (roots[k] > 0.0 && roots[k] < dt) v2 = std::max(v2, speed2(roots[k]));
+    }
   }
   *max_speed = std::sqrt(v2);
   *max_acc = std::sqrt(a2) / (dt * dt);
+}
+
+Planner::RoundsOutcome Planner::runRounds(const VoxelGrid& grid, const PlanRequest& req,
+                                          Attempt& at, PlanResult& r) {
+  const EamParams& P = params_;
+  const int last_free = at.spline.numControlPoints() - 4;
+  const CostSettings settings = costSettings(P);
+  GuideStats guide_stats;
+  RoundsOutcome outcome = RoundsOutcome::kStillColliding;
+  for (;;) {
+    const std::vector<CollisionStretch> stretches = timed(&r.stats.check_us, [&] {
+      return findCollisionStretches(at.spline, grid, P.start_escape_radius_m, at.check_step);
+    });
+    if (stretches.empty()) {
+      const double ratio = limitRatio(at.spline, P);
+      if (ratio <= kRefineAbove || at.refines >= P.max_refine_rounds) {
+        outcome = RoundsOutcome::kCollisionFree;
+        break;
+      }
+      reallocateTime(at.spline, ratio, req.start);
+      ++at.refines;
+      ++r.stats.refines;
+      if (trace_) trace_("refine: knot span x " + std::to_string(ratio * kRefineMargin));
+      continue;  // check collisions again with the new start
+    }
+    if (at.round >= P.max_rebound_rounds) break;
+    if (at.round > 0 && at.refines < P.max_refine_rounds) {
+      const double ratio = limitRatio(at.spline, P);
+      if (ratio > kRefineWhileColliding) {
+        reallocateTime(at.spline, ratio, req.start);
+        ++at.refines;
+        ++r.stats.refines;
+        if (trace_) trace_("refine while colliding: x " + std::to_string(ratio * kRefineMargin));
+        continue;
+      }
+    }
+
+    // A restart takes one guide around all collisions at once, avoiding slots from the start.
+    const std::vector<CollisionStretch> groups =
+        mergeStretches(stretches, at.restart && at.round == 0 ? 1e9 : P.merge_gap_s);
+    // A restart wants a different, roomier way: slots avoided from the first search and twice
+    // as wide, and twice the clearance from the anchor planes.
+    const bool avoid_slots = at.restart && at.round == 0;
+    const double slot_width = (at.restart ? 2.0 : 1.0) * P.astar_slot_width_m;
+    const double clearance = (at.restart ? 2.0 : 1.0) * P.clearance_m;
+    int added = 0;
+    struct GuideSpan {
+      double t0, t1;
+      size_t index;  // into r.guide_paths
+    };
+    std::vector<GuideSpan> round_guides;
+    for (const CollisionStretch& s : groups) {
+      const Eigen::Vector3d goal = s.after.cwiseMax(P.geofence_min).cwiseMin(P.geofence_max);
+      const Eigen::Vector3d from = s.before.cwiseMax(P.geofence_min).cwiseMin(P.geofence_max);
+      double z_lo = std::min(from.z(), goal.z()), z_hi = std::max(from.z(), goal.z());
+      for (const CurveSample& b : s.blocked) {
+        z_lo = std::min(z_lo, b.point.z());
+        z_hi = std::max(z_hi, b.point.z());
+      }
+      const AStarResult path =
+          guides_.find(grid, from, goal, z_lo, z_hi, avoid_slots, slot_width, &guide_stats);
+      if (!path.ok()) {
+        if (at.round == 0 && !at.restart) {
+          outcome = RoundsOutcome::kNoPath;
+          r.detail = std::string("A* around a colliding stretch: ") + toString(path.status);
+          break;
+        }
+        continue;  // keep the pairs made so far; later rounds or the verification decide
+      }
+      // N: the narrow-space test of the paper on the guide path. Once narrow, the request keeps
+      // the narrow weights.
+      if (!r.narrow && isPathNarrow(grid, path.path, P.narrow_probe_dist_m)) r.narrow = true;
+      if (at.round == 0 && P.guide_warm_start) {
+        warmStartFromGuide(path.path, s.t_before, s.t_after, kFirstFree, last_free, at.spline);
+      }
+      added +=
+          addAnchorPairs(s, path.path, at.spline, grid, kFirstFree, last_free, clearance, at.pairs);
+      r.guide_paths.push_back(path.path);
+      round_guides.push_back({s.t_before, s.t_after, r.guide_paths.size() - 1});
+      const int margin = static_cast<int>(std::ceil(P.window_margin_s / at.spline.knotSpan()));
+      const int lo = std::max(kFirstFree, s.blocked.front().segment - margin);
+      const int hi = std::min(last_free, s.blocked.back().segment + 3 + margin);
+      for (int i = lo; i <= hi; ++i) at.free_mask[i] = 1;
+    }
+    if (outcome == RoundsOutcome::kNoPath) break;
+    if (at.round == 0 && P.guide_warm_start && !round_guides.empty()) {
+      // The curve through the warm-started control points cuts the corners of the guide, which
+      // hugs the obstacles: give those grazes their pairs now (from the same guides) rather
+      // than in another round.
+      const std::vector<CollisionStretch> grazes = timed(&r.stats.check_us, [&] {
+        return findCollisionStretches(at.spline, grid, P.start_escape_radius_m, at.check_step);
+      });
+      for (const CollisionStretch& g : grazes) {
+        for (const GuideSpan& span : round_guides) {
+          if (g.blocked.back().t < span.t0 || g.blocked.front().t > span.t1) continue;
+          added += addAnchorPairs(g, r.guide_paths[span.index], at.spline, grid, kFirstFree,
+                                  last_free, clearance, at.pairs);
+          break;
+        }
+      }
+    }
+    if (added == 0 && at.round > 0) at.boost *= kCollisionBoost;
+    std::vector<int> free_points;
+    for (int i = kFirstFree; i <= last_free; ++i) {
+      if (at.free_mask[i]) free_points.push_back(i);
+    }
+    if (free_points.empty()) break;
+
+    CostWeights w;
+    w.smooth = r.narrow ? P.lambda_smooth_narrow : P.lambda_smooth_open;
+    w.collision = at.boost * (r.narrow ? P.lambda_collision_narrow : P.lambda_collision_open);
+    w.feasibility = P.lambda_feasibility;
+    r.weights = w;
+    const BsplineCost cost(settings, w, &at.pairs);
+    const bool keep_altitude =
+        horizontalProblem(at.pairs, at.spline.controlPoints(), free_points, P);
+    const OptimizeResult opt = timed(&r.stats.optimize_us, [&] {
+      return optimizeControlPoints(at.spline, cost, free_points, P.max_iterations,
+                                   P.optimizer_ftol_rel, keep_altitude);
+    });
+    ++at.round;
+    ++r.stats.rounds;
+    r.stats.evaluations += opt.evaluations;
+    if (!opt.ok) {
+      r.detail = opt.error;
+      outcome = RoundsOutcome::kOptimizerError;
+      break;
+    }
+    r.terms = opt.terms;
+    if (trace_) {
+      trace_("round " + std::to_string(at.round) + ": stretches " +
+             std::to_string(stretches.size()) + ", pairs added " + std::to_string(added) + ", dt " +
+             std::to_string(at.spline.knotSpan()) + (r.narrow ? ", narrow" : ", open") +
+             ", evals " + std::to_string(opt.evaluations) + ", Js " +
+             std::to_string(opt.terms.smooth) + ", Jc " + std::to_string(opt.terms.collision) +
+             ", Jf " + std::to_string(opt.terms.feasibility) + (keep_altitude ? ", xy" : ", xyz") +
+             " " + opt.error);
+    }
+  }
+  r.stats.astar_calls += guide_stats.calls;
+  r.stats.astar_expansions += guide_stats.expansions;
+  r.stats.astar_us += guide_stats.us;
+  return outcome;
 }
 
 PlanResult Planner::plan(const VoxelGrid& grid, const PlanRequest& req) {
@@ -247,151 +399,71 @@ PlanResult Planner::plan(const VoxelGrid& grid, const PlanRequest& req) {
   const Trajectory guess =
       req.reference.empty() ? straightQuintic(req.start, req.target, P.max_vel_mps, P.max_acc_mps2)
                             : req.reference;
-  UniformBspline spline = sampleToBspline(guess, req.start, req.target, P.knot_span_s);
-  r.stats.initial_duration_s = spline.duration();
-  r.stats.segments = spline.numSegments();
-  const int last_free = spline.numControlPoints() - 4;
+  const UniformBspline initial = sampleToBspline(guess, req.start, req.target, P.knot_span_s);
+  r.stats.initial_duration_s = initial.duration();
+  r.stats.segments = initial.numSegments();
 
-  CostSettings settings;
-  settings.max_vel_mps = P.max_vel_mps;
-  settings.max_acc_mps2 = P.max_acc_mps2;
-  settings.box_min = P.geofence_min;
-  settings.box_max = P.geofence_max;
-  PairSet pairs(spline.numControlPoints());
-  // Control points being optimised: those within window_margin_s of a colliding stretch.
-  std::vector<char> free_mask(spline.numControlPoints(), 0);
-  std::vector<int> free_points;
-  double boost = 1.0;
-  auto weights = [&]() {
-    CostWeights w;
-    w.smooth = r.narrow ? P.lambda_smooth_narrow : P.lambda_smooth_open;
-    w.collision = boost * (r.narrow ? P.lambda_collision_narrow : P.lambda_collision_open);
-    w.feasibility = P.lambda_feasibility;
-    return w;
-  };
-  // --- rounds: collisions -> pairs -> optimise; when collision-free but beyond the limits,
-  // re-allocate time (longer knot span) and check again ---------------------------------------
-  bool collision_free = false;
-  int round = 0;  // optimisations run
-  for (;;) {
-    const std::vector<CollisionStretch> stretches = timed(&r.stats.check_us, [&] {
-      return findCollisionStretches(spline, grid, P.start_escape_radius_m);
-    });
-    collision_free = stretches.empty();
-    if (collision_free) {
-      const double ratio = limitRatio(spline, P);
-      if (ratio <= kRefineAbove || r.stats.refines >= P.max_refine_rounds) break;
-      // Slower everywhere: the same control points on a longer knot span (the same curve,
-      // speeds / ratio, accelerations / ratio^2), except the first three, which must keep
-      // reproducing the start state; then check collisions again with the new start.
-      spline.setKnotSpan(spline.knotSpan() * ratio * kRefineMargin);
-      spline.controlPoints().leftCols(3) =
-          UniformBspline::startControlPoints(req.start, spline.knotSpan());
-      ++r.stats.refines;
-      if (trace_) trace_("refine: knot span x " + std::to_string(ratio * kRefineMargin));
-      continue;
-    }
-    if (round >= P.max_rebound_rounds) break;
-    double ratio = limitRatio(spline, P);
-    if (round > 0 && ratio > kRefineWhileColliding && r.stats.refines < P.max_refine_rounds) {
-      // Far beyond the limits while still colliding: the detours need more time than the
-      // guess had; give it now (same re-allocation as below), or the feasibility term keeps
-      // pulling the curve back into the obstacles.
-      spline.setKnotSpan(spline.knotSpan() * ratio * kRefineMargin);
-      spline.controlPoints().leftCols(3) =
-          UniformBspline::startControlPoints(req.start, spline.knotSpan());
-      ++r.stats.refines;
-      if (trace_)
-        trace_("refine while colliding: knot span x " + std::to_string(ratio * kRefineMargin));
-      continue;
-    }
-    // Stretches close to each other share one A* search, so that their detours agree (one
-    // side of an obstacle group rather than a slalom through it).
-    std::vector<CollisionStretch> groups;
-    for (const CollisionStretch& s : stretches) {
-      if (!groups.empty() && s.blocked.front().t - groups.back().blocked.back().t < P.merge_gap_s) {
-        CollisionStretch& g = groups.back();
-        g.blocked.insert(g.blocked.end(), s.blocked.begin(), s.blocked.end());
-        g.after = s.after;
-        g.t_after = s.t_after;
-      } else {
-        groups.push_back(s);
+  // --- attempts: the rounds from the guess, then (when they run out) a restart ------------------
+  FailReason reason = FailReason::kOptimizer;
+  std::string detail;
+  bool collides = true;  // the last attempt failed on an obstacle (a restart may help)
+  for (int attempt = 0; attempt <= P.max_restarts && collides; ++attempt) {
+    Attempt at;
+    at.spline = initial;
+    at.pairs.assign(initial.numControlPoints(), {});
+    at.free_mask.assign(initial.numControlPoints(), 0);
+    at.check_step = kCheckStep * grid.resolution();
+    at.restart = attempt > 0;
+    r.stats.restarts = attempt;
+    r.guide_paths.clear();
+    for (;;) {
+      const RoundsOutcome outcome = runRounds(grid, req, at, r);
+      r.spline = at.spline;
+      r.pairs = at.pairs;
+      if (outcome == RoundsOutcome::kNoPath) return fail(r, FailReason::kNoPath, r.detail);
+      if (outcome == RoundsOutcome::kOptimizerError)
+        return fail(r, FailReason::kOptimizer, r.detail);
+      if (outcome == RoundsOutcome::kStillColliding) {
+        reason = FailReason::kOptimizer;
+        collides = true;
+        detail = "still in collision after " + std::to_string(r.stats.rounds) + " rounds";
+        break;
       }
-    }
-
-    int added = 0;
-    for (const CollisionStretch& s : groups) {
-      const Eigen::Vector3d goal = s.after.cwiseMax(P.geofence_min).cwiseMin(P.geofence_max);
-      const Eigen::Vector3d from = s.before.cwiseMax(P.geofence_min).cwiseMin(P.geofence_max);
-      double z_lo = std::min(from.z(), goal.z()), z_hi = std::max(from.z(), goal.z());
-      for (const CurveSample& b : s.blocked) {
-        z_lo = std::min(z_lo, b.point.z());
-        z_hi = std::max(z_hi, b.point.z());
+      // --- exact conversion and independent verification ------------------------------------
+      Trajectory traj = at.spline.toTrajectory();
+      const Verification v = timed(&r.stats.verify_us, [&] {
+        return verifyTrajectory(traj, grid, req.start, req.target, P);
+      });
+      r.stats.max_speed = v.max_speed;
+      r.stats.max_acc = v.max_acc;
+      if (v.ok) {
+        for (const auto& list : at.pairs) r.stats.pairs += static_cast<int>(list.size());
+        if (r.stats.rounds == 0) {  // nothing to avoid: report with the open-space weights
+          r.weights =
+              CostWeights{P.lambda_smooth_open, P.lambda_collision_open, P.lambda_feasibility};
+        }
+        // The objective of the answer itself (after any time re-allocation).
+        r.terms = BsplineCost(costSettings(P), r.weights, &at.pairs)
+                      .evaluate(at.spline.controlPoints(), at.spline.knotSpan(), nullptr);
+        r.jerk_energy = cubicJerkEnergy(traj);
+        r.trajectory = std::move(traj);
+        r.ok = true;
+        r.reason = FailReason::kNone;
+        r.detail.clear();
+        return r;
       }
-      AStarResult path = findGuide(grid, from, goal, z_lo, z_hi, &r.stats);
-      if (!path.ok()) {
-        if (round == 0)
-          return fail(r, FailReason::kNoPath,
-                      std::string("A* around a colliding stretch: ") + toString(path.status));
-        continue;  // keep the pairs made so far; the verification has the last word
-      }
-      if (!r.narrow && isPathNarrow(grid, path.path, P.narrow_probe_dist_m)) r.narrow = true;
-      added +=
-          addAnchorPairs(s, path.path, spline, grid, kFirstFree, last_free, P.clearance_m, pairs);
-      if (round == 0 && P.guide_warm_start) {
-        warmStartFromGuide(path.path, s.t_before, s.t_after, kFirstFree, last_free, spline);
-      }
-      r.guide_paths.push_back(path.path);
-      const int margin = static_cast<int>(std::ceil(P.window_margin_s / spline.knotSpan()));
-      const int lo = std::max(kFirstFree, s.blocked.front().segment - margin);
-      const int hi = std::min(last_free, s.blocked.back().segment + 3 + margin);
-      for (int i = lo; i <= hi; ++i) free_mask[i] = 1;
-    }
-    free_points.clear();
-    for (int i = kFirstFree; i <= last_free; ++i) {
-      if (free_mask[i]) free_points.push_back(i);
-    }
-    if (added == 0 && round > 0) boost *= kCollisionBoost;
-
-    r.weights = weights();
-    BsplineCost cost(settings, r.weights, &pairs);
-    if (free_points.empty()) break;  // nothing collides and nothing was ever moved
-    const OptimizeResult opt = timed(&r.stats.optimize_us, [&] {
-      return optimizeControlPoints(spline, cost, free_points, P.max_iterations,
-                                   P.optimizer_ftol_rel);
-    });
-    ++round;
-    ++r.stats.rounds;
-    r.stats.evaluations += opt.evaluations;
-    if (!opt.ok) return fail(r, FailReason::kOptimizer, opt.error);
-    r.terms = opt.terms;
-    if (trace_) {
-      trace_("round " + std::to_string(round) + ": stretches " + std::to_string(stretches.size()) +
-             ", pairs added " + std::to_string(added) + ", limit ratio " + std::to_string(ratio) +
-             ", dt " + std::to_string(spline.knotSpan()) + (r.narrow ? ", narrow" : ", open") +
-             ", evals " + std::to_string(opt.evaluations) + ", Js " +
-             std::to_string(opt.terms.smooth) + ", Jc " + std::to_string(opt.terms.collision) +
-             ", Jf " + std::to_string(opt.terms.feasibility) + " " + opt.error);
+      reason = FailReason::kVerify;
+      detail = v.why;
+      collides = v.collision;
+      // The check and the verification sample different points: a curve that grazes a voxel
+      // corner may pass one and not the other. Go on with a finer check.
+      if (!v.collision || at.check_step <= kFineCheckStep * grid.resolution() ||
+          at.round >= P.max_rebound_rounds)
+        break;
+      at.check_step = kFineCheckStep * grid.resolution();
     }
   }
-  for (const auto& list : pairs) r.stats.pairs += static_cast<int>(list.size());
-  r.spline = spline;
-  r.pairs = pairs;
-  if (!collision_free)
-    return fail(r, FailReason::kOptimizer,
-                "still in collision after " + std::to_string(r.stats.rounds) + " rounds");
-
-  // --- exact conversion and independent verification --------------------------------------
-  Trajectory traj = spline.toTrajectory();
-  const Verification v = timed(
-      &r.stats.verify_us, [&] { return verifyTrajectory(traj, grid, req.start, req.target, P); });
-  r.stats.max_speed = v.max_speed;
-  r.stats.max_acc = v.max_acc;
-  if (!v.ok) return fail(r, FailReason::kVerify, v.why);
-  r.jerk_energy = traj.jerkEnergy();
-  r.trajectory = std::move(traj);
-  r.ok = true;
-  return r;
+  return fail(r, reason, detail);
 }
 
 }  // namespace mmh::eam

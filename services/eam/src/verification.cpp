@@ -1,7 +1,10 @@
 #include "mmh/eam/verification.hpp"
 
+#include "mmh/eam/cubic_roots.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <sstream>
 
 namespace mmh::eam {
@@ -12,6 +15,36 @@ std::string fmt(double v) {
   s.precision(4);
   s << v;
   return s.str();
+}
+
+// Exact maxima of |v| and |a|. Pieces of degree <= 3 (what EAM produces) in closed form: the
+// velocity is quadratic, so |v|^2 is a quartic whose stationary points solve a cubic, and the
+// acceleration is linear, so it peaks at an end. Other pieces: Trajectory's general routine.
+void exactMaxima(const Trajectory& traj, double* max_speed, double* max_acc) {
+  for (const Piece& piece : traj.pieces()) {
+    if (!piece.coeffs.rightCols(kMaxPolyOrder - 4).isZero(0.0)) {
+      *max_speed = traj.maxSpeed();
+      *max_acc = traj.maxAcceleration();
+      return;
+    }
+  }
+  double v2 = 0.0, a2 = 0.0;
+  for (const Piece& piece : traj.pieces()) {
+    const double T = piece.duration;
+    const Eigen::Vector3d b0 = piece.coeffs.col(1), b1 = 2.0 * piece.coeffs.col(2),
+                          b2 = 3.0 * piece.coeffs.col(3);
+    auto speed2 = [&](double t) { return (b0 + t * (b1 + t * b2)).squaredNorm(); };
+    v2 = std::max({v2, speed2(0.0), speed2(T)});
+    double roots[3];
+    const int n = cubicRoots(2.0 * b2.dot(b2), 3.0 * b1.dot(b2), b1.dot(b1) + 2.0 * b0.dot(b2),
+                             b0.dot(b1), roots);
+    for (int i = 0; i < n; ++i) {
+      if (roots[i] > 0.0 && roots[i] < T) v2 = std::max(v2, speed2(roots[i]));
+    }
+    a2 = std::max({a2, b1.squaredNorm(), (b1 + 2.0 * T * b2).squaredNorm()});
+  }
+  *max_speed = std::sqrt(v2);
+  *max_acc = std::sqrt(a2);
 }
 
 }  // namespace
@@ -37,8 +70,7 @@ Verification verifyTrajectory(const Trajectory& traj, const VoxelGrid& grid,
     r.why = "does not end at the target at rest";
     return r;
   }
-  r.max_speed = traj.maxSpeed();
-  r.max_acc = traj.maxAcceleration();
+  exactMaxima(traj, &r.max_speed, &r.max_acc);
 
   // Dense samples, piece by piece, no two further apart than a quarter voxel.
   const double step_m = 0.25 * grid.resolution();
@@ -48,17 +80,27 @@ Verification verifyTrajectory(const Trajectory& traj, const VoxelGrid& grid,
   bool escaping = true;
   double t0 = 0.0;
   for (const Piece& piece : traj.pieces()) {
+    // Pieces of degree <= 3 (EAM's) are evaluated with their four coefficients only.
+    const bool cubic = piece.coeffs.rightCols(kMaxPolyOrder - 4).isZero(0.0);
+    const Eigen::Vector3d c0 = piece.coeffs.col(0), c1 = piece.coeffs.col(1),
+                          c2 = piece.coeffs.col(2), c3 = piece.coeffs.col(3);
     const int n = std::max(1, static_cast<int>(std::ceil(piece.duration / dt)));
     for (int k = 0; k <= n; ++k) {
       const double tl = piece.duration * k / n;
-      const Eigen::Vector3d p = piece.position(tl);
-      if (grid.isOccupiedPoint(p)) {
+      const Eigen::Vector3d p =
+          cubic ? Eigen::Vector3d(c0 + tl * (c1 + tl * (c2 + tl * c3))) : piece.position(tl);
+      const Eigen::Vector3i cell = grid.localIndexOf(p);
+      const bool in_window = grid.inWindow(cell);  // outside: unknown, i.e. free
+      const int64_t idx = in_window ? grid.linearIndex(cell) : 0;
+      if (in_window && grid.atLinear(idx) == Occupancy::kOccupied) {
         r.why = "hits an occupied cell at t=" + fmt(t0 + tl) + " s";
+        r.collision = true;
         return r;
       }
-      if (grid.isBlockedPoint(p)) {
+      if (in_window && grid.isBlockedLinear(idx)) {
         if (!(escaping && (p - start.position).norm() <= params.start_escape_radius_m)) {
           r.why = "enters the inflated obstacles at t=" + fmt(t0 + tl) + " s";
+          r.collision = true;
           return r;
         }
       } else {

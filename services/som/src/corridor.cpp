@@ -90,12 +90,36 @@ Eigen::Vector3d pullInside(const Polytope& poly, const Eigen::Vector3d& p,
   return best;
 }
 
+// Free triangle: segments from `c` to points along [a, b] at most half a voxel apart.
+bool triangleVisible(const VoxelGrid& grid, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                     const Eigen::Vector3d& c, const EscapeZone& escape) {
+  const int n =
+      std::max(1, static_cast<int>(std::ceil((b - a).norm() / (0.5 * grid.resolution()))));
+  for (int i = 0; i <= n; ++i)
+    if (!segmentVisible(grid, c, a + (b - a) * (static_cast<double>(i) / n), escape)) return false;
+  return true;
+}
+
+// Where a vehicle at p moving at v stops when braking at a_max, pulled back along the way until
+// the straight line to it is free; p itself if it is (nearly) at rest.
+Eigen::Vector3d stoppingPoint(const VoxelGrid& grid, const Eigen::Vector3d& p,
+                              const Eigen::Vector3d& v, double a_max, const EscapeZone& escape) {
+  const double speed = v.norm();
+  if (speed < 0.3 || a_max <= 0.0) return p;
+  const Eigen::Vector3d dir = v / speed;
+  for (double d = speed * speed / (2.0 * a_max); d > 0.1; d -= grid.resolution()) {
+    if (segmentVisible(grid, p, p + d * dir, escape)) return p + d * dir;
+  }
+  return p;
+}
+
 }  // namespace
 
 bool CorridorBuilder::build(const VoxelGrid& grid, const std::vector<Eigen::Vector3d>& raw_path,
                             const Eigen::Vector3d& bound_lo, const Eigen::Vector3d& bound_hi,
                             const EscapeZone& escape, const CorridorParams& params, Corridor* out,
-                            std::string* why) {
+                            std::string* why, const Eigen::Vector3d& start_velocity,
+                            double max_acc_mps2) {
   *out = Corridor();
   out->bound_lo = bound_lo;
   out->bound_hi = bound_hi;
@@ -107,6 +131,7 @@ bool CorridorBuilder::build(const VoxelGrid& grid, const std::vector<Eigen::Vect
   const Eigen::Vector3d target = raw_path.back();
   InflationOptions inflation;
   inflation.iterations = params.iterations;
+  inflation.early_round_margin_m = params.early_round_margin_m;
   const double step = grid.resolution();
 
   std::vector<Polytope> polys;
@@ -141,28 +166,51 @@ bool CorridorBuilder::build(const VoxelGrid& grid, const std::vector<Eigen::Vect
         return false;
       }
     }
-    const Eigen::Vector3d b = path.pointAt(seed_s);
+    Eigen::Vector3d b = path.pointAt(seed_s);
+    Seed seed{a, b};
+    if (polys.empty()) {
+      // A moving start: the first polytope also covers the way to where the vehicle would stop
+      // when braking, so that the trajectory can turn without leaving the corridor.
+      const Eigen::Vector3d q = stoppingPoint(grid, a, start_velocity, max_acc_mps2, escape);
+      if ((q - a).norm() > 0.1) {
+        // The triangle start - seed end - stopping point must be free; shorten the seed if not.
+        for (double t : {1.0, 0.5, 0.25}) {
+          const Eigen::Vector3d bt = a + t * (b - a);
+          if ((q - bt).norm() > 0.1 && triangleVisible(grid, a, bt, q, escape)) {
+            seed = {a, bt, q};
+            seed_s = progress + t * (seed_s - progress);  // a is the start, on the path
+            break;
+          }
+        }
+      }
+    }
+    Eigen::Vector3d seed_lo = a.cwiseMin(b), seed_hi = a.cwiseMax(b);
+    for (const Eigen::Vector3d& p : seed) {
+      seed_lo = seed_lo.cwiseMin(p);
+      seed_hi = seed_hi.cwiseMax(p);
+    }
     const Eigen::Vector3d margin(params.box_margin_m, params.box_margin_m, params.box_margin_z_m);
-    const Eigen::Vector3d box_lo = (a.cwiseMin(b) - margin).cwiseMax(bound_lo);
-    const Eigen::Vector3d box_hi = (a.cwiseMax(b) + margin).cwiseMin(bound_hi);
+    const Eigen::Vector3d box_lo = (seed_lo - margin).cwiseMax(bound_lo);
+    const Eigen::Vector3d box_hi = (seed_hi + margin).cwiseMin(bound_hi);
     if ((box_hi - box_lo).minCoeff() <= 0.0) {
       *why = "seed outside the corridor bounds";
       return false;
     }
-    blockedSurfacePoints(grid, box_lo, box_hi, escape, &points_);
+    mask_.build(grid, box_lo, box_hi, escape);
+    mask_.surfacePoints(&points_);
     out->surface_points += static_cast<int>(points_.size());
     Polytope poly;
     Ellipsoid metric;
-    if (!inflator_.inflate(points_, box_lo, box_hi, a, b, inflation, &poly, &metric)) {
+    if (!inflator_.inflate(points_, box_lo, box_hi, seed, inflation, &poly, &metric)) {
       *why = "an obstacle point lies on the seed segment";
       return false;
     }
     // Surface points suffice in practice; this scan proves it for every blocked cell centre.
     bool clean = false;
     for (int pass = 0; pass < 4 && !clean; ++pass) {
-      blockedPointsInside(grid, box_lo, box_hi, poly, escape, &extra_);
+      mask_.pointsInside(poly, &extra_);
       clean = extra_.empty();
-      if (!clean && !inflator_.exclude(extra_, metric, a, b, inflation.plane_offset_m, &poly)) {
+      if (!clean && !inflator_.exclude(extra_, metric, seed, inflation.plane_offset_m, &poly)) {
         *why = "an obstacle point lies on the seed segment";
         return false;
       }

@@ -4,23 +4,6 @@
 #include <cmath>
 
 namespace mmh::som {
-namespace {
-
-// Is cell `idx` (with centre `c`) an obstacle for the corridor?
-struct BlockedTest {
-  const VoxelGrid& grid;
-  const EscapeZone& escape;
-  bool has_escape;
-  double r2;
-  bool operator()(int64_t idx, const Eigen::Vector3d& c) const {
-    if (!grid.isBlockedLinear(idx)) return false;
-    if (!has_escape) return true;
-    if ((c - escape.center).squaredNorm() > r2) return true;
-    return grid.atLinear(idx) == Occupancy::kOccupied;
-  }
-};
-
-}  // namespace
 
 bool cellRange(const VoxelGrid& grid, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
                Eigen::Vector3i* first, Eigen::Vector3i* last) {
@@ -35,77 +18,131 @@ bool cellRange(const VoxelGrid& grid, const Eigen::Vector3d& lo, const Eigen::Ve
   return true;
 }
 
-void blockedSurfacePoints(const VoxelGrid& grid, const Eigen::Vector3d& lo,
-                          const Eigen::Vector3d& hi, const EscapeZone& escape,
-                          std::vector<Eigen::Vector3d>* out) {
-  out->clear();
+bool BlockedMask::build(const VoxelGrid& grid, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                        const EscapeZone& escape) {
   Eigen::Vector3i f, l;
-  if (!cellRange(grid, lo, hi, &f, &l)) return;
-  const Eigen::Vector3i& n = grid.size();
-  const int64_t sy = n.x(), sz = int64_t{n.x()} * n.y();
-  const double res = grid.resolution();
-  const Eigen::Vector3d origin = (grid.originIndex().cast<double>().array() + 0.5) * res;
-  const BlockedTest blocked{grid, escape, escape.radius > 0.0, escape.radius * escape.radius};
-  const bool has_escape = escape.radius > 0.0;
-  for (int z = f.z(); z <= l.z(); ++z) {
-    const bool z_edge = z == 0 || z == n.z() - 1;
-    for (int y = f.y(); y <= l.y(); ++y) {
-      const bool yz_edge = z_edge || y == 0 || y == n.y() - 1;
-      const int64_t row = grid.linearIndex(Eigen::Vector3i(0, y, z));
-      for (int x = f.x(); x <= l.x(); ++x) {
-        const int64_t idx = row + x;
-        if (!grid.isBlockedLinear(idx)) continue;
-        bool surface;
-        if (yz_edge || x == 0 || x == n.x() - 1) {
-          surface = true;  // a neighbour is outside the window, which counts as not blocked
-        } else if (!has_escape) {
-          surface = !grid.isBlockedLinear(idx - 1) || !grid.isBlockedLinear(idx + 1) ||
-                    !grid.isBlockedLinear(idx - sy) || !grid.isBlockedLinear(idx + sy) ||
-                    !grid.isBlockedLinear(idx - sz) || !grid.isBlockedLinear(idx + sz);
-        } else {
-          const Eigen::Vector3d c = origin + Eigen::Vector3d(x, y, z) * res;
-          if (!blocked(idx, c)) continue;
-          surface = !blocked(idx - 1, c - Eigen::Vector3d(res, 0, 0)) ||
-                    !blocked(idx + 1, c + Eigen::Vector3d(res, 0, 0)) ||
-                    !blocked(idx - sy, c - Eigen::Vector3d(0, res, 0)) ||
-                    !blocked(idx + sy, c + Eigen::Vector3d(0, res, 0)) ||
-                    !blocked(idx - sz, c - Eigen::Vector3d(0, 0, res)) ||
-                    !blocked(idx + sz, c + Eigen::Vector3d(0, 0, res));
+  if (!cellRange(grid, lo, hi, &f, &l)) {
+    n_.setZero();
+    mask_.clear();
+    return false;
+  }
+  res_ = grid.resolution();
+  n_ = l - f + Eigen::Vector3i::Ones();
+  corner_ = ((grid.originIndex() + f).cast<double>().array() + 0.5) * res_;
+  sy_ = n_.x() + 2;
+  sz_ = sy_ * (n_.y() + 2);
+  mask_.assign(static_cast<size_t>(sz_) * (n_.z() + 2), 0);
+  const Eigen::Vector3i& size = grid.size();
+  // Rows of the window clipped to the bordered box; everything else stays 0 (not blocked).
+  const int x0 = std::max(0, f.x() - 1), x1 = std::min(size.x() - 1, l.x() + 1);
+  for (int z = std::max(0, f.z() - 1); z <= std::min(size.z() - 1, l.z() + 1); ++z) {
+    for (int y = std::max(0, f.y() - 1); y <= std::min(size.y() - 1, l.y() + 1); ++y) {
+      const uint16_t* counts = grid.blockedCounts() + grid.linearIndex(Eigen::Vector3i(x0, y, z));
+      uint8_t* m = &mask_[(z - f.z() + 1) * sz_ + (y - f.y() + 1) * sy_ + (x0 - f.x() + 1)];
+      const int n = x1 - x0 + 1;
+      for (int x = 0; x < n; ++x) m[x] = counts[x] != 0;  // vectorised
+    }
+  }
+  if (escape.radius > 0.0) {
+    // Inflated (not occupied) cells around the start are free.
+    const double r2 = escape.radius * escape.radius;
+    for (int z = 0; z < n_.z() + 2; ++z)
+      for (int y = 0; y < n_.y() + 2; ++y)
+        for (int x = 0; x < n_.x() + 2; ++x) {
+          uint8_t& m = mask_[z * sz_ + y * sy_ + x];
+          if (!m) continue;
+          const Eigen::Vector3d c = centerOf(x - 1, y - 1, z - 1);
+          if ((c - escape.center).squaredNorm() > r2) continue;
+          const Eigen::Vector3i local = f + Eigen::Vector3i(x - 1, y - 1, z - 1);
+          if (grid.at(local) != Occupancy::kOccupied) m = 0;
         }
-        if (surface) out->push_back(origin + Eigen::Vector3d(x, y, z) * res);
+  }
+  return true;
+}
+
+void BlockedMask::surfacePoints(std::vector<Eigen::Vector3d>* out) const {
+  out->clear();
+  const int nx = n_.x(), ny = n_.y(), nz = n_.z();
+  const int64_t sy = sy_, sz = sz_;
+  row_.resize(nx + 2);
+  uint8_t* __restrict surface = row_.data();
+  for (int z = 1; z <= nz; ++z) {
+    for (int y = 1; y <= ny; ++y) {
+      const uint8_t* __restrict c = &mask_[z * sz + y * sy];
+      // Blocked with a free 6-neighbour, as bytes over the whole row (vectorised) ...
+      uint8_t any = 0;
+      for (int x = 1; x <= nx; ++x) {
+        const uint8_t s =
+            c[x] & ~(c[x - 1] & c[x + 1] & c[x - sy] & c[x + sy] & c[x - sz] & c[x + sz]);
+        surface[x] = s;
+        any |= s;
+      }
+      if (!any) continue;
+      // ... then the few set cells become points.
+      for (int x = 1; x <= nx; ++x)
+        if (surface[x] & 1) out->push_back(centerOf(x - 1, y - 1, z - 1));
+    }
+  }
+}
+
+void BlockedMask::pointsInside(const Polytope& poly, std::vector<Eigen::Vector3d>* out) const {
+  out->clear();
+  const Polytope::Matrix& h = poly.halfspaces();
+  const int faces = static_cast<int>(h.rows());
+  // Along a row (y, z fixed) face i allows a_x t <= slack_i(y, z), with t the offset from the
+  // box corner in x; slack is affine in (y, z), so it is updated without divisions.
+  // slack = base + dy * y + dz * z; inv = 1 / a_x (0 if a_x = 0); sign of a_x.
+  faces_.resize(faces);
+  for (int i = 0; i < faces; ++i) {
+    FaceRow& f = faces_[i];
+    f.base = h(i, 3) - h.row(i).head<3>().dot(corner_);
+    f.dy = -h(i, 1) * res_;
+    f.dz = -h(i, 2) * res_;
+    const double a = h(i, 0);
+    f.sign = a > 1e-12 ? 1 : (a < -1e-12 ? -1 : 0);
+    f.inv = f.sign != 0 ? 1.0 / a : 0.0;
+  }
+  for (int z = 0; z < n_.z(); ++z) {
+    for (int y = 0; y < n_.y(); ++y) {
+      double t0 = -0.5 * res_, t1 = (n_.x() - 0.5) * res_;
+      for (int i = 0; i < faces && t0 <= t1; ++i) {
+        const FaceRow& f = faces_[i];
+        const double slack = f.base + f.dy * y + f.dz * z;
+        if (f.sign > 0) {
+          t1 = std::min(t1, slack * f.inv);
+        } else if (f.sign < 0) {
+          t0 = std::max(t0, slack * f.inv);
+        } else if (slack <= 0.0) {
+          t1 = t0 - 1.0;
+        }
+      }
+      if (t0 > t1) continue;
+      const int x0 = std::max(0, static_cast<int>(std::floor(t0 / res_)));
+      const int x1 = std::min(n_.x() - 1, static_cast<int>(std::ceil(t1 / res_)));
+      const uint8_t* m = &mask_[(z + 1) * sz_ + (y + 1) * sy_ + 1];
+      for (int x = x0; x <= x1; ++x) {
+        if (!m[x]) continue;
+        const Eigen::Vector3d c = centerOf(x, y, z);
+        if (poly.maxViolation(c) < 0.0) out->push_back(c);
       }
     }
   }
 }
 
+void blockedSurfacePoints(const VoxelGrid& grid, const Eigen::Vector3d& lo,
+                          const Eigen::Vector3d& hi, const EscapeZone& escape,
+                          std::vector<Eigen::Vector3d>* out) {
+  BlockedMask mask;
+  out->clear();
+  if (mask.build(grid, lo, hi, escape)) mask.surfacePoints(out);
+}
+
 void blockedPointsInside(const VoxelGrid& grid, const Eigen::Vector3d& lo,
                          const Eigen::Vector3d& hi, const Polytope& poly, const EscapeZone& escape,
                          std::vector<Eigen::Vector3d>* out) {
+  BlockedMask mask;
   out->clear();
-  Eigen::Vector3i f, l;
-  if (!cellRange(grid, lo, hi, &f, &l)) return;
-  const double res = grid.resolution();
-  const Eigen::Vector3d origin = (grid.originIndex().cast<double>().array() + 0.5) * res;
-  const BlockedTest blocked{grid, escape, escape.radius > 0.0, escape.radius * escape.radius};
-  for (int z = f.z(); z <= l.z(); ++z) {
-    for (int y = f.y(); y <= l.y(); ++y) {
-      const Eigen::Vector3d row_start = origin + Eigen::Vector3d(0.0, y, z) * res;
-      double t0, t1;
-      if (!poly.lineInterval(row_start, 0, &t0, &t1)) continue;
-      t0 = std::max(t0, (f.x() - 1) * res);
-      t1 = std::min(t1, (l.x() + 1) * res);
-      if (t0 > t1) continue;
-      // Cells x with centre t = x * res in [t0, t1] (a little wider; the exact test follows).
-      const int x0 = std::max(f.x(), static_cast<int>(std::floor(t0 / res)));
-      const int x1 = std::min(l.x(), static_cast<int>(std::ceil(t1 / res)));
-      const int64_t row = grid.linearIndex(Eigen::Vector3i(0, y, z));
-      for (int x = x0; x <= x1; ++x) {
-        if (!grid.isBlockedLinear(row + x)) continue;
-        const Eigen::Vector3d c = row_start + Eigen::Vector3d(x * res, 0.0, 0.0);
-        if (blocked(row + x, c) && poly.maxViolation(c) < 0.0) out->push_back(c);
-      }
-    }
-  }
+  if (mask.build(grid, lo, hi, escape)) mask.pointsInside(poly, out);
 }
 
 }  // namespace mmh::som

@@ -30,6 +30,8 @@ SomParams loadSomParams(const Config& c) {
   CorridorParams& k = p.corridor;
   k.box_margin_m = optDouble(c, "som.corridor_box_margin_m", k.box_margin_m, 0.3, 20.0);
   k.box_margin_z_m = optDouble(c, "som.corridor_box_margin_z_m", k.box_margin_z_m, 0.2, 20.0);
+  k.early_round_margin_m =
+      optDouble(c, "som.corridor_early_round_margin_m", k.early_round_margin_m, 0.0, 20.0);
   k.seed_length_m = optDouble(c, "som.corridor_seed_length_m", k.seed_length_m, 0.2, 50.0);
   k.iterations = optInt(c, "som.corridor_iterations", k.iterations, 1, 10);
   k.overlap_backoff_m =
@@ -55,6 +57,11 @@ SomParams loadSomParams(const Config& c) {
   o.extra_rounds = optInt(c, "som.extra_rounds", o.extra_rounds, 0, 10);
   o.extra_round_evaluations =
       optInt(c, "som.extra_round_evaluations", o.extra_round_evaluations, 1, 100000);
+  o.extra_round_weight_factor =
+      optDouble(c, "som.extra_round_weight_factor", o.extra_round_weight_factor, 1.0, 1000.0);
+  o.extra_round_limit_excess =
+      optDouble(c, "som.extra_round_limit_excess", o.extra_round_limit_excess, 0.0, 1.0);
+  o.max_repair_stretch = optDouble(c, "som.max_repair_stretch", o.max_repair_stretch, 1.0, 10.0);
   o.repair_tolerance = optDouble(c, "som.repair_tolerance", o.repair_tolerance, 0.0, 0.05);
 
   VerifyParams& v = p.verify;

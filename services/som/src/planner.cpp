@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <ctime>
 
 #include "mmh/common/collision_check.hpp"
 
@@ -46,25 +47,57 @@ Planner::Planner(const SomParams& params)
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double microsSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
-}
+// Measures one step (wall clock and thread CPU time).
+class StepTimer {
+ public:
+  StepTimer() { restart(); }
+  void restart() {
+    wall_ = std::chrono::steady_clock::now();
+    cpu_ = threadCpuUs();
+  }
+  void stop(StepTime* out) const {
+    out->wall_us =
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - wall_).count();
+    out->cpu_us = threadCpuUs() - cpu_;
+  }
+
+ private:
+  static double threadCpuUs() {
+    timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return ts.tv_sec * 1e6 + ts.tv_nsec * 1e-3;
+  }
+  std::chrono::steady_clock::time_point wall_;
+  double cpu_ = 0.0;
+};
 bool inBox(const Eigen::Vector3d& p, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
+}
+
+// Drops the middle of every straight run of the grid path: shortenPath's line-of-sight tests
+// then have far fewer candidates (its cost is quadratic in them), for the same kind of result.
+std::vector<Eigen::Vector3d> withoutCollinearPoints(const std::vector<Eigen::Vector3d>& path) {
+  if (path.size() <= 2) return path;
+  std::vector<Eigen::Vector3d> out{path.front()};
+  for (size_t i = 1; i + 1 < path.size(); ++i) {
+    const Eigen::Vector3d d0 = path[i] - path[i - 1], d1 = path[i + 1] - path[i];
+    if ((d0 - d1).norm() > 1e-9) out.push_back(path[i]);
+  }
+  out.push_back(path.back());
+  return out;
 }
 
 }  // namespace
 
 PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
                          const Eigen::Vector3d& target) {
-  const Clock::time_point t_start = Clock::now();
+  const StepTimer whole;
   PlanOutput out;
   auto finish = [&](PlanStatus status, const std::string& detail) -> PlanOutput& {
     out.status = status;
     out.detail = detail;
     if (status != PlanStatus::kOk) out.trajectory = Trajectory();
-    out.timings.total_us = microsSince(t_start);
+    whole.stop(&out.timings.total);
     return out;
   };
   const SomParams& p = params_;
@@ -88,10 +121,10 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
     return finish(PlanStatus::kStartInObstacle, "start lies in an occupied voxel");
   if (grid.isBlockedPoint(target))
     return finish(PlanStatus::kTargetInObstacle, "target lies inside the inflated obstacles");
-  out.timings.checks_us = microsSince(t_start);
+  whole.stop(&out.timings.checks);
 
   // --- A* ---------------------------------------------------------------------------------
-  Clock::time_point t0 = Clock::now();
+  StepTimer step;
   AStarOptions astar_options;
   astar_options.max_expansions = p.astar_max_expansions;
   astar_options.unknown_is_free = true;
@@ -102,8 +135,8 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
   astar_options.start_escape_radius_m = start_in_margin ? p.start_escape_radius_m : 0.0;
   const AStarResult found = astar_.search(grid, start.position, target, astar_options);
   out.astar_expansions = found.expansions;
-  if (found.ok()) out.path = shortenPath(grid, found.path);
-  out.timings.astar_us = microsSince(t0);
+  if (found.ok()) out.path = shortenPath(grid, withoutCollinearPoints(found.path));
+  step.stop(&out.timings.astar);
   switch (found.status) {
     case AStarResult::Status::kFound:
       break;
@@ -119,23 +152,24 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
   }
 
   // --- corridor ---------------------------------------------------------------------------
-  t0 = Clock::now();
+  step.restart();
   EscapeZone escape;
   if (start_in_margin) {
     escape.center = start.position;
     escape.radius = p.start_escape_radius_m;
   }
   std::string why;
-  const bool corridor_ok = corridor_builder_.build(grid, out.path, bound_lo, bound_hi, escape,
-                                                   p.corridor, &out.corridor, &why);
-  out.timings.corridor_us = microsSince(t0);
+  const bool corridor_ok =
+      corridor_builder_.build(grid, out.path, bound_lo, bound_hi, escape, p.corridor, &out.corridor,
+                              &why, start.velocity, p.max_acc_mps2);
+  step.stop(&out.timings.corridor);
   if (!corridor_ok) return finish(PlanStatus::kCorridor, why);
 
   // --- optimisation -----------------------------------------------------------------------
-  t0 = Clock::now();
+  step.restart();
   OptimizerOutput opt;
   const bool opt_ok = optimizer_.setup(start, target, out.corridor) && optimizer_.optimize(&opt);
-  out.timings.optimize_us = microsSince(t0);
+  step.stop(&out.timings.optimize);
   out.optimizer_evaluations = opt.evaluations;
   out.cost_total = opt.cost_total;
   out.cost_control = opt.cost_control;
@@ -148,10 +182,10 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
   out.piece_polytope = std::move(opt.piece_polytope);
 
   // --- verification -----------------------------------------------------------------------
-  t0 = Clock::now();
+  step.restart();
   out.verify = verifyTrajectory(out.trajectory, start, target, grid, out.corridor,
                                 out.piece_polytope, p.max_vel_mps, p.max_acc_mps2, p.verify);
-  out.timings.verify_us = microsSince(t0);
+  step.stop(&out.timings.verify);
   if (!out.verify.ok) return finish(PlanStatus::kVerify, out.verify.failure);
   return finish(PlanStatus::kOk, "");
 }

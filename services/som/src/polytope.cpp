@@ -1,5 +1,6 @@
 #include "mmh/som/polytope.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -21,8 +22,14 @@ void Polytope::addBox(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
 }
 
 double Polytope::maxViolation(const Eigen::Vector3d& p) const {
-  if (h_.rows() == 0) return -std::numeric_limits<double>::infinity();
-  return (h_.leftCols<3>() * p - h_.col(3)).maxCoeff();
+  // A plain loop: the Eigen expression would evaluate the product into a heap temporary.
+  double worst = -std::numeric_limits<double>::infinity();
+  const int n = static_cast<int>(h_.rows());
+  const double* a0 = h_.col(0).data();
+  const double *a1 = h_.col(1).data(), *a2 = h_.col(2).data(), *b = h_.col(3).data();
+  for (int i = 0; i < n; ++i)
+    worst = std::max(worst, a0[i] * p.x() + a1[i] * p.y() + a2[i] * p.z() - b[i]);
+  return worst;
 }
 
 bool Polytope::lineInterval(const Eigen::Vector3d& p, int axis, double* lo, double* hi) const {

@@ -97,6 +97,7 @@ bool TrajectoryOptimizer::setup(const KinematicState& start, const Eigen::Vector
   const SpeedProfile profile(arc.back(), std::max(0.0, start.velocity.dot(dir0)), max_vel_,
                              max_acc_);
 
+  moving_start_ = start.velocity.norm() > 0.1 || start.acceleration.norm() > 0.1;
   head_.col(0) = start.position;
   head_.col(1) = start.velocity;
   head_.col(2) = start.acceleration;
@@ -136,8 +137,9 @@ double TrajectoryOptimizer::evaluate(const Eigen::VectorXd& x, Eigen::VectorXd* 
   grad_durations_.array() += rho;
 
   const double mu = params_.penalty_smoothing;
-  const double wc = corridor_boost_ * params_.weight_corridor, wv = params_.weight_velocity,
-               wa = params_.weight_acceleration;
+  const double wc = corridor_boost_ * params_.weight_corridor,
+               wv = limit_boost_ * params_.weight_velocity,
+               wa = limit_boost_ * params_.weight_acceleration;
   const double vl = max_vel_ * (1.0 - params_.limit_margin),
                al = max_acc_ * (1.0 - params_.limit_margin);
   const double v2 = vl * vl, a2 = al * al;
@@ -265,6 +267,33 @@ double TrajectoryOptimizer::corridorViolation(const Eigen::VectorXd& x) {
   return worst;
 }
 
+void TrajectoryOptimizer::sampledMaxima(const Trajectory& traj, double* speed, double* acc) {
+  // Dense samples are enough here: the verification computes the exact maxima afterwards.
+  constexpr int kSamples = 32;
+  double v2 = 0.0, a2 = 0.0;
+  for (const Piece& piece : traj.pieces()) {
+    const Eigen::Matrix<double, 3, kMaxPolyOrder>& c = piece.coeffs;
+    for (int j = 0; j <= kSamples; ++j) {
+      const double t = piece.duration * j / kSamples;
+      const Eigen::Vector3d v =
+          c.col(1) +
+          t * (2.0 * c.col(2) + t * (3.0 * c.col(3) + t * (4.0 * c.col(4) + t * 5.0 * c.col(5))));
+      const Eigen::Vector3d a =
+          2.0 * c.col(2) + t * (6.0 * c.col(3) + t * (12.0 * c.col(4) + t * 20.0 * c.col(5)));
+      v2 = std::max(v2, v.squaredNorm());
+      a2 = std::max(a2, a.squaredNorm());
+    }
+  }
+  *speed = std::sqrt(v2);
+  *acc = std::sqrt(a2);
+}
+
+double TrajectoryOptimizer::limitExcess(const Eigen::VectorXd& x) {
+  double v, a;
+  sampledMaxima(trajectoryAt(x), &v, &a);
+  return std::max(v / max_vel_, std::sqrt(a / max_acc_));
+}
+
 bool TrajectoryOptimizer::optimize(OptimizerOutput* out) {
   *out = OptimizerOutput();
   if (pieces_ == 0) {
@@ -275,15 +304,24 @@ bool TrajectoryOptimizer::optimize(OptimizerOutput* out) {
   corridor_boost_ = 1.0;
   Eigen::VectorXd x = x0_;
   double best = runNlopt(x, params_.max_evaluations, &out->nlopt_result, &out->message);
-  // Penalties are soft: if the result still leaves the polytopes, raise the corridor weight and
-  // continue from where it stopped.
+  // Penalties are soft: if the result still leaves the polytopes, or exceeds the limits by more
+  // than the final time stretch may fix, raise the weight of what is violated and continue from
+  // where it stopped.
   for (int round = 0; round < params_.extra_rounds && std::isfinite(best); ++round) {
-    if (corridorViolation(x) <= 0.0) break;
-    corridor_boost_ *= 10.0;
+    // The corridor first (safety); the limits only once inside it (the time stretch at the end
+    // fixes small excesses, but not those a moving start forces early on).
+    if (corridorViolation(x) > 0.0) {
+      corridor_boost_ *= params_.extra_round_weight_factor;
+    } else if (moving_start_ && limitExcess(x) > 1.0 + params_.extra_round_limit_excess) {
+      limit_boost_ *= params_.extra_round_weight_factor;
+    } else {
+      break;
+    }
     best = runNlopt(x, params_.extra_round_evaluations, &out->nlopt_result, &out->message);
     ++out->extra_rounds;
   }
   corridor_boost_ = 1.0;
+  limit_boost_ = 1.0;
   if (!std::isfinite(best)) {
     if (out->message.empty()) out->message = "no finite cost was reached";
     return false;
@@ -297,13 +335,27 @@ bool TrajectoryOptimizer::optimize(OptimizerOutput* out) {
   const int m = pieces_;
   points_ = Eigen::Map<const Eigen::Matrix3Xd>(x.data(), 3, m - 1);
   for (int i = 0; i < m; ++i) durations_[i] = durationFromTau(x[3 * (m - 1) + i]);
-  for (int pass = 0; pass < 8; ++pass) {
-    const double rv = traj.maxSpeed() / max_vel_, ra = traj.maxAcceleration() / max_acc_;
-    if (std::max(rv, ra) <= 1.0 + params_.repair_tolerance) break;
-    const double k = std::max(rv, std::sqrt(ra));
-    durations_ *= std::max(k, 1.0 + 0.5 * params_.repair_tolerance);
-    minco_.setParameters(points_, durations_);
-    traj = minco_.trajectory();
+  double stretch = 1.0, v = 0.0, a = 0.0;
+  sampledMaxima(traj, &v, &a);
+  double excess = std::max(v / max_vel_, a / max_acc_);
+  for (int pass = 0; pass < 8 && excess > 1.0 + params_.repair_tolerance; ++pass) {
+    const double k =
+        std::max({v / max_vel_, std::sqrt(a / max_acc_), 1.0 + 0.5 * params_.repair_tolerance});
+    // A moving start fixes the first moments, so stretching does not always help: it is
+    // bounded and kept only while it lowers the excess (the verification refuses the rest).
+    if (stretch * k > params_.max_repair_stretch) break;
+    minco_.setParameters(points_, durations_ * k);
+    Trajectory longer = minco_.trajectory();
+    double lv, la;
+    sampledMaxima(longer, &lv, &la);
+    const double longer_excess = std::max(lv / max_vel_, la / max_acc_);
+    if (longer_excess >= excess) break;
+    durations_ *= k;
+    stretch *= k;
+    traj = std::move(longer);
+    excess = longer_excess;
+    v = lv;
+    a = la;
     ++out->repairs;
   }
   // The banded solve meets the start state to rounding; make it exact.

@@ -54,8 +54,12 @@ VerifyReport verifyTrajectory(const Trajectory& traj, const KinematicState& star
     const Piece& piece = traj.pieces()[i];
     const int steps = std::max(1, static_cast<int>(std::ceil(piece.duration / dt)));
     const Polytope& own = corridor.polytopes.at(piece_polytope[i]);
+    const PieceCoeffs& c = piece.coeffs;
     for (int j = 0; j <= steps; ++j) {
-      const Eigen::Vector3d p = piece.position(piece.duration * j / steps);
+      // Horner on the piece's own coefficients (the same polynomial Piece::position evaluates).
+      const double t = piece.duration * j / steps;
+      Eigen::Vector3d p = c.col(kMaxPolyOrder - 1);
+      for (int k = kMaxPolyOrder - 2; k >= 0; --k) p = p * t + c.col(k);
       ++r.samples;
       if (grid.isOccupiedPoint(p))
         return fail("sample at t-piece " + std::to_string(i) + " lies in an occupied voxel");

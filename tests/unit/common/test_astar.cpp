@@ -136,3 +136,22 @@ TEST(ShortenPath, KeepsOnlyTurnPointsAndStaysFree) {
   for (size_t i = 1; i < short_path.size(); ++i)
     EXPECT_TRUE(mmh::isSegmentFree(g, short_path[i - 1], short_path[i]));
 }
+
+TEST(GridAStar, WeightedSearchExpandsLessAndStaysWithinItsBound) {
+  VoxelGrid g(0.1, Vector3i(0, 0, 0), Vector3i(80, 80, 10));
+  g.setInflationRadius(0.2);
+  for (int z = 0; z < 10; ++z)
+    for (int y = 0; y < 60; ++y) g.set(Vector3i(40, y, z), Occupancy::kOccupied);
+  mmh::GridAStar astar;
+  const Vector3d a(1.0, 1.0, 0.5), b(7.0, 1.0, 0.5);
+  const auto optimal = astar.search(g, a, b);
+  mmh::AStarOptions weighted;
+  weighted.heuristic_weight = 2.0;
+  const auto fast = astar.search(g, a, b, weighted);
+  ASSERT_TRUE(optimal.ok());
+  ASSERT_TRUE(fast.ok());
+  EXPECT_LT(fast.expansions, optimal.expansions);
+  EXPECT_LE(mmh::pathLength(fast.path), 2.0 * 1.001 * mmh::pathLength(optimal.path));
+  for (size_t i = 1; i < fast.path.size(); ++i)
+    EXPECT_TRUE(mmh::isSegmentFree(g, fast.path[i - 1], fast.path[i]));
+}

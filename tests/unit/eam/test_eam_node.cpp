@@ -99,6 +99,12 @@ TEST(EamNode, AnswersEveryRequestWithAVerifiedResult) {
   EXPECT_LT((t.acceleration(0.0) - s.acceleration).norm(), 1e-8);
   EXPECT_LT((t.position(t.duration()) - target).norm(), 1e-9);
   EXPECT_EQ(eam_test::firstBlockedTime(grid, t, false), -1.0);
+  // Cost breakdown: control = the answer's jerk energy (checked with Trajectory's own
+  // integral), no time term, penalties within the total.
+  EXPECT_NEAR(res.cost_control, t.jerkEnergy(), 1e-6 * (1.0 + t.jerkEnergy()));
+  EXPECT_EQ(res.cost_time, 0.0);
+  EXPECT_GE(res.cost_penalty, 0.0);
+  EXPECT_LE(res.cost_penalty, res.cost_total + 1e-9);
   EXPECT_EQ(node_ctx.counter("plans_ok"), 1);
 }
 

@@ -4,11 +4,13 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "eam_test_grids.hpp"
 #include "mmh/common/config.hpp"
 #include "mmh/eam/initial_guess.hpp"
 #include "mmh/eam/planner.hpp"
+#include "mmh/eam/uniform_bspline.hpp"
 #include "mmh/eam/verification.hpp"
 
 using Eigen::Vector3d;
@@ -109,6 +111,36 @@ TEST(EamPlanner, KeepsAMovingStartStateExactly) {
   req.target = Vector3d(10.0, 1.0, 1.5);
   const PlanResult r = planner.plan(g, req);  // no reference: straight quintic guess
   expectValid(g, req, r, p);
+}
+
+TEST(EamPlanner, StartInTheInflatedMarginMayLeaveIt) {
+  // A newly mapped pillar 0.2 m from the vehicle: the start is inside the 0.3 m inflation (not
+  // in the obstacle). The answer leaves the margin within start_escape_radius_m and never
+  // touches the obstacle.
+  mmh::VoxelGrid g = eam_test::freeGrid();
+  eam_test::addPillar(g, 1.0, 0.55, 0.35);
+  const auto p = params();
+  mmh::eam::Planner planner(p);
+  PlanRequest req;
+  req.start.position = Vector3d(1.0, 0.0, 1.2);
+  ASSERT_TRUE(g.isBlockedPoint(req.start.position));
+  ASSERT_FALSE(g.isOccupiedPoint(req.start.position));
+  req.target = Vector3d(9.0, -0.5, 1.2);
+  const PlanResult r = planner.plan(g, req);
+  ASSERT_TRUE(r.ok) << toString(r.reason) << ": " << r.detail;
+  const mmh::Trajectory& t = r.trajectory;
+  EXPECT_EQ(eam_test::firstBlockedTime(g, t, /*occupied_only=*/true), -1.0);
+  bool left = false;
+  for (double s = 0.0; s <= t.duration(); s += 0.002) {
+    const Vector3d x = t.position(s);
+    if (!g.isBlockedPoint(x)) {
+      left = true;
+    } else {
+      ASSERT_FALSE(left) << "back in the margin at t=" << s;
+      ASSERT_LE((x - req.start.position).norm(), p.start_escape_radius_m + 1e-9);
+    }
+  }
+  EXPECT_TRUE(left);
 }
 
 TEST(EamPlanner, EmptyReferenceUsesAStraightGuess) {
@@ -256,5 +288,29 @@ TEST(EamParams, DefaultsLoadAndBadValuesNameTheKey) {
     FAIL() << "no error";
   } catch (const mmh::ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("eam.knot_span_s"), std::string::npos) << e.what();
+  }
+}
+
+TEST(EamVerification, ExactMaximaAgreeWithTheGeneralRoutine) {
+  const mmh::VoxelGrid empty = eam_test::freeGrid();
+  auto p = params();
+  p.limit_tolerance_ratio = 100.0;  // only the maxima are of interest here
+  std::mt19937_64 rng(21);
+  std::normal_distribution<double> n(0.0, 0.3);
+  for (int trial = 0; trial < 10; ++trial) {
+    mmh::KinematicState s;
+    s.position = Vector3d(0.5, 0.0, 1.2);
+    s.velocity = Vector3d(n(rng), n(rng), 0.0);
+    const double dt = 0.15 + 0.05 * trial;
+    Eigen::Matrix3Xd q(3, 16);
+    q.leftCols(3) = mmh::eam::UniformBspline::startControlPoints(s, dt);
+    for (int i = 3; i < 13; ++i) q.col(i) = Vector3d(0.5 + 0.6 * i, n(rng), 1.2 + 0.2 * n(rng));
+    const Vector3d target(9.0, 0.0, 1.2);
+    for (int i = 13; i < 16; ++i) q.col(i) = target;
+    const mmh::Trajectory t = mmh::eam::UniformBspline(q, dt).toTrajectory();
+    const mmh::eam::Verification v = mmh::eam::verifyTrajectory(t, empty, s, target, p);
+    ASSERT_TRUE(v.ok) << v.why;
+    EXPECT_NEAR(v.max_speed, t.maxSpeed(), 1e-9 * (1.0 + v.max_speed));
+    EXPECT_NEAR(v.max_acc, t.maxAcceleration(), 1e-9 * (1.0 + v.max_acc));
   }
 }

@@ -123,6 +123,33 @@ TEST(Corridor, RedundantPolytopesAreRemoved) {
   }
 }
 
+TEST(Corridor, MovingStartCoversTheBrakingWay) {
+  // Flying sideways at 2.5 m/s: braking at 2 m/s^2 takes 1.56 m, which the path does not cover.
+  const auto w = som_test::wallWithGap();
+  mmh::AStarOptions options;
+  options.min_bound = Vector3d(-30, -30, 0.3);
+  options.max_bound = Vector3d(30, 30, 2.7);
+  mmh::GridAStar astar;
+  const auto r = astar.search(*w.grid, w.start, w.target, options);
+  ASSERT_TRUE(r.ok());
+  const auto path = mmh::shortenPath(*w.grid, r.path);
+  mmh::som::CorridorBuilder builder;
+  mmh::som::Corridor c;
+  std::string why;
+  const Vector3d v(0.0, -2.5, 0.0);
+  ASSERT_TRUE(builder.build(*w.grid, path, Vector3d(-2, -4, 0.3), Vector3d(14, 4, 2.7), {}, {}, &c,
+                            &why, v, 2.0))
+      << why;
+  expectValidCorridor(w, c);
+  const Vector3d stop = w.start + v * v.norm() / (2.0 * 2.0);
+  EXPECT_LT(c.polytopes.front().maxViolation(stop), 0.0);
+  // Without the velocity the first polytope need not reach that far.
+  mmh::som::Corridor still;
+  ASSERT_TRUE(builder.build(*w.grid, path, Vector3d(-2, -4, 0.3), Vector3d(14, 4, 2.7), {}, {},
+                            &still, &why));
+  expectValidCorridor(w, still);
+}
+
 TEST(Corridor, EmptyPathIsRefused) {
   const auto w = som_test::pillars();
   mmh::som::CorridorBuilder builder;

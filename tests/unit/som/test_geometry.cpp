@@ -57,14 +57,24 @@ TEST(InscribedEllipsoid, BoxGivesTheAxisAlignedEllipsoid) {
   Ellipsoid start;
   start.center = Vector3d(0.5, 0.5, 0.5);
   start.shape = 0.1 * Eigen::Matrix3d::Identity();
-  Ellipsoid e;
-  ASSERT_TRUE(mmh::som::inscribedEllipsoid(p, start, &e));
-  EXPECT_TRUE(ellipsoidInside(e, p));
-  // The maximum-volume ellipsoid of a box has the half edges as semi-axes.
+  // The maximum-volume ellipsoid of a box has the half edges as semi-axes. A small final barrier
+  // weight gets close to it.
   const double ideal = 4.0 / 3.0 * M_PI * 2.0 * 1.0 * 0.5;
-  EXPECT_GT(e.volume(), 0.95 * ideal);
+  mmh::som::InscribedEllipsoidOptions accurate;
+  accurate.barrier_start = 1e-1;
+  accurate.barrier_final = 1e-4;
+  accurate.max_newton_steps = 30;
+  Ellipsoid e, quick;
+  ASSERT_TRUE(mmh::som::inscribedEllipsoid(p, start, &e, accurate));
+  EXPECT_TRUE(ellipsoidInside(e, p));
+  EXPECT_GT(e.volume(), 0.99 * ideal);
   EXPECT_LE(e.volume(), ideal * (1 + 1e-9));
-  EXPECT_LT((e.center - Vector3d(2, 1, 0.5)).norm(), 0.05);
+  EXPECT_LT((e.center - Vector3d(2, 1, 0.5)).norm(), 0.01);
+  // The corridor's default is a few damped Newton steps: inside, and far grown from the start.
+  ASSERT_TRUE(mmh::som::inscribedEllipsoid(p, start, &quick));
+  EXPECT_TRUE(ellipsoidInside(quick, p));
+  EXPECT_GT(quick.volume(), 0.5 * ideal);
+  EXPECT_GT(quick.volume(), 100.0 * start.volume());
 }
 
 TEST(InscribedEllipsoid, SimplexGivesTheInsphere) {
@@ -80,12 +90,16 @@ TEST(InscribedEllipsoid, SimplexGivesTheInsphere) {
   Ellipsoid start;
   start.shape = 0.05 * Eigen::Matrix3d::Identity();
   start.center = Vector3d(0.2, -0.1, 0.05);
+  mmh::som::InscribedEllipsoidOptions accurate;
+  accurate.barrier_start = 1e-1;
+  accurate.barrier_final = 1e-4;
+  accurate.max_newton_steps = 30;
   Ellipsoid e;
-  ASSERT_TRUE(mmh::som::inscribedEllipsoid(p, start, &e));
+  ASSERT_TRUE(mmh::som::inscribedEllipsoid(p, start, &e, accurate));
   EXPECT_TRUE(ellipsoidInside(e, p));
   const double r = 1.0 / std::sqrt(3.0);  // inradius of this tetrahedron
-  EXPECT_GT(e.volume(), 0.95 * 4.0 / 3.0 * M_PI * r * r * r);
-  EXPECT_LT(e.center.norm(), 0.03);
+  EXPECT_GT(e.volume(), 0.99 * 4.0 / 3.0 * M_PI * r * r * r);
+  EXPECT_LT(e.center.norm(), 0.01);
 }
 
 TEST(InscribedEllipsoid, RefusesACentreOutside) {
@@ -125,6 +139,36 @@ TEST(SeparatingPlane, PassesThroughThePointAndKeepsTheSeed) {
                                          Vector3d(1, 0, 0), &y));
 }
 
+TEST(SeparatingPlane, KeepsAThreePointSeedAndIsOptimal) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  int solved = 0;
+  for (int trial = 0; trial < 500; ++trial) {
+    const Vector3d x(u(rng), u(rng), u(rng));
+    const Vector3d seed[3] = {Vector3d(u(rng), u(rng), u(rng)), Vector3d(u(rng), u(rng), u(rng)),
+                              Vector3d(u(rng), u(rng), u(rng))};
+    Vector3d y;
+    if (!mmh::som::separatingPlane(x, seed, 3, &y)) continue;
+    ++solved;
+    EXPECT_NEAR(y.dot(x), 1.0, 1e-9);
+    for (const Vector3d& v : seed) EXPECT_LE(y.dot(v), 1.0 + 1e-7);
+    for (int k = 0; k < 20; ++k) {
+      Vector3d z(u(rng), u(rng), u(rng));
+      if (std::abs(z.dot(x)) < 1e-6) continue;
+      z /= z.dot(x);
+      if (z.dot(seed[0]) <= 1.0 && z.dot(seed[1]) <= 1.0 && z.dot(seed[2]) <= 1.0) {
+        EXPECT_GE(z.norm(), y.norm() - 1e-9);
+      }
+    }
+  }
+  EXPECT_GT(solved, 50);
+  // A point inside the seed triangle cannot be separated with room to spare (only the plane of
+  // the triangle itself touches it).
+  const Vector3d tri[3] = {Vector3d(1, 0, 0), Vector3d(0, 1, 0), Vector3d(-1, -1, 0.5)};
+  Vector3d y;
+  EXPECT_FALSE(mmh::som::separatingPlane((tri[0] + tri[1] + tri[2]) / 3.0, tri, 3, &y, 1e-3));
+}
+
 TEST(PolytopeInflation, ExcludesEveryPointAndKeepsTheSeed) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-3.0, 3.0);
@@ -143,7 +187,7 @@ TEST(PolytopeInflation, ExcludesEveryPointAndKeepsTheSeed) {
     options.iterations = 3;
     Polytope poly;
     Ellipsoid metric;
-    ASSERT_TRUE(inflator.inflate(points, Vector3d::Constant(-3), Vector3d::Constant(3), a, b,
+    ASSERT_TRUE(inflator.inflate(points, Vector3d::Constant(-3), Vector3d::Constant(3), {a, b},
                                  options, &poly, &metric));
     for (const Vector3d& p : points) EXPECT_GT(poly.maxViolation(p), 0.0);
     EXPECT_LT(poly.maxViolation(a), 0.0);

@@ -43,14 +43,17 @@ void expectVerified(const som_test::World& w, const mmh::KinematicState& start,
     EXPECT_LE(p.z(), 2.7 + 0.02);
   }
   EXPECT_EQ(outside, 0);
-  // Flight time is within reach of the rest-to-rest bound on the planned path.
+  // Flight time is within reach of the rest-to-rest bound on the planned path (which ignores
+  // the turns: the S-bend needs about 1.5 times it).
   const double bound = mmh::som::restToRestTimeBound(mmh::pathLength(out.path), v_max, a_max);
-  EXPECT_LT(t.duration(), 1.6 * bound);
+  EXPECT_LT(t.duration(), 1.8 * bound);
   EXPECT_GT(t.duration(),
             0.8 * mmh::som::restToRestTimeBound((w.target - start.position).norm(), v_max, a_max));
-  EXPECT_GT(out.timings.total_us, 0.0);
-  EXPECT_GE(out.timings.total_us,
-            out.timings.astar_us + out.timings.corridor_us + out.timings.optimize_us);
+  const auto& tm = out.timings;
+  EXPECT_GT(tm.total.wall_us, 0.0);
+  EXPECT_GT(tm.total.cpu_us, 0.0);
+  EXPECT_GE(tm.total.wall_us, tm.astar.wall_us + tm.corridor.wall_us + tm.optimize.wall_us);
+  EXPECT_GT(tm.astar.cpu_us + tm.corridor.cpu_us + tm.optimize.cpu_us, 0.0);
 }
 
 mmh::KinematicState atRest(const Vector3d& p) {

@@ -21,8 +21,8 @@ struct AStarOptions {
   // When the start lies in the inflated (but not occupied) zone, cells within this distance of it
   // may be crossed so that the vehicle can leave the margin it is in.
   double start_escape_radius_m = 0.0;
-  // Weighted A*: the heuristic is multiplied by this (>= 1). Above 1 the search expands far
-  // fewer cells and the path may be longer by at most this factor.
+  // Weight on the heuristic: above 1 the search expands far fewer cells and returns a path at
+  // most this factor longer than the shortest (weighted A*); 1 (+ a tie-breaking 1e-3) is exact.
   double heuristic_weight = 1.0;
   // Optional extra cost (in cells, >= 0) of entering a cell (local index, linear index), e.g. to
   // keep the path away from obstacles. The heuristic stays admissible.
@@ -45,11 +45,21 @@ class GridAStar {
                      const Eigen::Vector3d& goal, const AStarOptions& options = {});
 
  private:
-  // Per-cell search state, reused across searches (a generation stamp marks stale entries).
-  std::vector<float> g_cost_;
-  std::vector<int32_t> parent_;
-  std::vector<uint32_t> stamp_;
+  // Per-cell search state in one record (one cache line per neighbour visited), reused across
+  // searches (a generation stamp marks stale entries).
+  struct CellState {
+    float g = 0.f;
+    int32_t parent = -1;
+    uint32_t stamp = 0;
+  };
+  std::vector<CellState> cells_;
   uint32_t generation_ = 0;
+  struct OpenEntry {
+    float f;
+    int32_t index;
+    bool operator>(const OpenEntry& o) const { return f > o.f; }
+  };
+  std::vector<OpenEntry> open_;  // the open list's storage, reused across searches
 };
 
 // Removes intermediate points while the straight segment between kept points stays free.

@@ -69,6 +69,9 @@ class VoxelGrid {
     return inWindow(local) && blocked_count_[linearIndex(local)] > 0;
   }
   bool isBlockedLinear(int64_t index) const { return blocked_count_[index] > 0; }
+  // Per cell, the number of occupied cells within the inflation radius (> 0: blocked); for
+  // scans that read whole rows.
+  const uint16_t* blockedCounts() const { return blocked_count_.data(); }
   bool isBlockedPoint(const Eigen::Vector3d& p) const { return isBlocked(localIndexOf(p)); }
   bool isOccupiedPoint(const Eigen::Vector3d& p) const {
     return atPoint(p) == Occupancy::kOccupied;

@@ -57,7 +57,8 @@ class BsplineCost {
     return evaluate(q, dt, grad, 0, static_cast<int>(q.cols()) - 1);
   }
   // Only the terms that depend on a control point in [first, last]: the cost up to a constant
-  // and the exact gradient for those points, when only they move.
+  // and the exact gradient for those points, when only they move (other columns of grad are
+  // not meaningful).
   CostTerms evaluate(const Eigen::Matrix3Xd& q, double dt, Eigen::Matrix3Xd* grad, int first,
                      int last) const;
 

@@ -22,11 +22,13 @@ struct OptimizeResult {
 // the others stay where they are. `error` is set (and ok stays true) when NLopt stopped with an
 // error after finding a usable point.
 // NLopt stops after max_evaluations or when a step improves the cost by less than ftol_rel.
+// keep_altitude: optimise x and y only (the caller knows that no term pushes vertically).
 OptimizeResult optimizeControlPoints(UniformBspline& spline, const BsplineCost& cost,
                                      const std::vector<int>& free_points, int max_evaluations,
-                                     double ftol_rel = 1e-3);
+                                     double ftol_rel = 1e-3, bool keep_altitude = false);
 // All of 3 .. n-4.
 OptimizeResult optimizeControlPoints(UniformBspline& spline, const BsplineCost& cost,
-                                     int max_evaluations, double ftol_rel = 1e-3);
+                                     int max_evaluations, double ftol_rel = 1e-3,
+                                     bool keep_altitude = false);
 
 }  // namespace mmh::eam

@@ -27,7 +27,7 @@ struct EamParams {
 
   // Uniform knot span of the initial B-spline (s); the actual span divides the initial duration
   // into whole segments and grows when time is re-allocated.
-  double knot_span_s = 0.15;
+  double knot_span_s = 0.2;
   // lambda1 / lambda2 for open space (N = 0) and narrow space (N = 1), lambda3 for both.
   double lambda_smooth_open = 1.0;
   double lambda_smooth_narrow = 0.2;
@@ -40,7 +40,7 @@ struct EamParams {
   // Only control points within this time of a colliding stretch are optimised (EAM is a local
   // re-optimisation; the rest of the trajectory keeps its shape, and the problem stays small
   // and well conditioned).
-  double window_margin_s = 0.6;
+  double window_margin_s = 0.5;
   // Start the optimisation from the A* guide path on each colliding stretch (control points
   // placed along it) instead of from the colliding guess.
   bool guide_warm_start = true;
@@ -48,22 +48,33 @@ struct EamParams {
   double merge_gap_s = 2.0;
   // Collision-check / pair-generation rounds (the first included) and time re-allocations.
   int max_rebound_rounds = 6;
-  int max_refine_rounds = 3;
+  int max_refine_rounds = 5;
+  // Restarts when the rounds run out with collisions: from the guess again, with one A* guide
+  // around all the collisions at once that avoids slots.
+  int max_restarts = 1;
   // L-BFGS evaluations per optimisation, and its relative stopping tolerance on the cost.
   int max_iterations = 200;
-  double optimizer_ftol_rel = 1e-3;
+  double optimizer_ftol_rel = 1e-2;
   // Accepted excess of the exact max speed / acceleration over the limits (the paper accepts a
   // small dynamic violation in an emergency).
   double limit_tolerance_ratio = 0.05;
-  // A* budget and the radius around a start inside the inflated margin that may be crossed.
+  // A* budget per guide search.
   int astar_max_expansions = 200000;
+  // Weighted A*: a guide need not be the shortest path, and a weight above 1 saves most of the
+  // expansions (the slot cost makes the plain octile heuristic weak).
+  double astar_heuristic_weight = 1.5;
   // A guide cell is in a slot when inflated obstacles lie within this distance on both sides
   // (along x, y, z or a horizontal diagonal). When the shortest guide threads a slot, A* runs
   // again with this extra cost (in voxels) per step through a slot cell.
-  double astar_slot_width_m = 0.4;
+  double astar_slot_width_m = 0.3;
   double astar_slot_cost = 10.0;
-  // A* first searches within this height of the colliding stretch, then the whole band.
-  double astar_slab_margin_m = 0.05;
+  // A* first searches the voxel layers the colliding stretch occupies, widened by this, then
+  // the whole geofence band.
+  double astar_slab_margin_m = 0.0;
+  // ... and the box around the stretch's end points widened by this (horizontally).
+  double astar_box_margin_m = 3.0;
+  // A start inside the inflated margin (not in an occupied cell) may cross it this far: the
+  // vehicle has to be able to leave the margin a newly mapped obstacle put it in.
   double start_escape_radius_m = 0.3;
 };
 

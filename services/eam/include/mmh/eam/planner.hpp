@@ -1,7 +1,8 @@
-// The Emergency Avoidance Mode planner (paper Sec. III.C.3): initial guess -> uniform cubic
-// B-spline -> rounds of {collision stretches -> A* -> anchor pairs -> L-BFGS} with the weights
-// chosen by the narrow-space test on the A* paths -> time re-allocation while the limits are
-// broken -> exact conversion to polynomial pieces -> independent verification.
+// The Emergency Avoidance Mode planner (paper Sec. III.C.3, after EGO-Planner): initial guess ->
+// uniform cubic B-spline -> rounds of {collision stretches -> A* guide -> {p, v} anchor pairs ->
+// L-BFGS} with the weights chosen by the narrow-space test on the guides -> time re-allocation
+// while the limits are broken -> exact conversion to polynomial pieces -> independent
+// verification. A restart from the guide of all collisions at once when the rounds run out.
 #pragma once
 
 #include <Eigen/Core>
@@ -9,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "mmh/common/grid_astar.hpp"
 #include "mmh/common/trajectory.hpp"
 #include "mmh/common/voxel_grid.hpp"
 #include "mmh/eam/bspline_cost.hpp"
 #include "mmh/eam/eam_params.hpp"
+#include "mmh/eam/guide_search.hpp"
 #include "mmh/eam/uniform_bspline.hpp"
 
 namespace mmh::eam {
@@ -43,6 +44,7 @@ const char* toString(FailReason reason);
 struct PlanStats {
   int rounds = 0;       // optimisations run
   int refines = 0;      // time re-allocations
+  int restarts = 0;     // restarts from the guide of all collisions
   int evaluations = 0;  // cost evaluations, all rounds
   int astar_calls = 0;
   int64_t astar_expansions = 0;
@@ -71,21 +73,24 @@ struct PlanResult {
 
 class Planner {
  public:
-  explicit Planner(const EamParams& params) : params_(params) {}
+  explicit Planner(const EamParams& params) : params_(params), guides_(params) {}
   PlanResult plan(const VoxelGrid& grid, const PlanRequest& request);
+  // Allocates what a plan on this grid needs (call when a map of a new size arrives).
+  void prepare(const VoxelGrid& grid) { guides_.prepare(grid); }
   const EamParams& params() const { return params_; }
   // Receives one line per round (collisions, pairs, weights, cost) when set; for debugging.
   void setTrace(std::function<void(const std::string&)> trace) { trace_ = std::move(trace); }
 
  private:
-  EamParams params_;
-  // A* from `from` to `goal` around a colliding stretch whose altitude spans [z_lo, z_hi].
-  AStarResult findGuide(const VoxelGrid& grid, const Eigen::Vector3d& from,
-                        const Eigen::Vector3d& goal, double z_lo, double z_hi, PlanStats* stats);
+  struct Attempt;
+  enum class RoundsOutcome { kCollisionFree, kStillColliding, kNoPath, kOptimizerError };
+  // Collision rounds and time re-allocations on attempt.spline until it is collision-free and
+  // within the limits, or the rounds run out.
+  RoundsOutcome runRounds(const VoxelGrid& grid, const PlanRequest& req, Attempt& attempt,
+                          PlanResult& r);
 
-  GridAStar astar_;                    // keeps its per-cell arrays between calls
-  std::vector<int8_t> slot_memo_;      // per cell: 0 unknown, 1 in a slot, 2 not
-  std::vector<int64_t> slot_touched_;  // cells to reset after a search
+  EamParams params_;
+  GuideSearch guides_;
   std::function<void(const std::string&)> trace_;
 };
 

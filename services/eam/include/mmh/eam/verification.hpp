@@ -14,6 +14,7 @@ namespace mmh::eam {
 struct Verification {
   bool ok = false;
   std::string why;                        // first failed check
+  bool collision = false;                 // it failed on an obstacle
   double max_speed = 0.0, max_acc = 0.0;  // exact maxima of the pieces
 };
 

@@ -34,15 +34,19 @@ constexpr double kCorridorContainTolerance = 1e-5;
 class CorridorBuilder {
  public:
   // `path` runs from the start to the target; consecutive points are joined by free segments.
-  // The corridor is bounded by [bound_lo, bound_hi] (which must contain the path). Returns false
-  // with a reason in `why` if no corridor could be built.
+  // The corridor is bounded by [bound_lo, bound_hi] (which must contain the path). With a
+  // moving start, the first polytope also covers the braking distance at max_acc_mps2 along
+  // start_velocity where that is free. Returns false with a reason in `why` if no corridor
+  // could be built.
   bool build(const VoxelGrid& grid, const std::vector<Eigen::Vector3d>& path,
              const Eigen::Vector3d& bound_lo, const Eigen::Vector3d& bound_hi,
              const EscapeZone& escape, const CorridorParams& params, Corridor* out,
-             std::string* why);
+             std::string* why, const Eigen::Vector3d& start_velocity = Eigen::Vector3d::Zero(),
+             double max_acc_mps2 = 0.0);
 
  private:
   PolytopeInflator inflator_;
+  BlockedMask mask_;
   std::vector<Eigen::Vector3d> points_, extra_;
 };
 

@@ -21,9 +21,9 @@ struct Ellipsoid {
 struct InscribedEllipsoidOptions {
   // Log-barrier weights mu, from the first to the last stage (each stage divides by 10). The
   // result's log det is within about (number of faces) x mu_final of the true maximum.
-  double barrier_start = 1e-1;
-  double barrier_final = 1e-3;
-  int max_newton_steps = 12;  // per stage
+  double barrier_start = 1e-2;
+  double barrier_final = 1e-2;  // a ~90 % ellipsoid is plenty for the metric of the next round
+  int max_newton_steps = 6;     // per stage
   double newton_tolerance = 1e-7;
 };
 

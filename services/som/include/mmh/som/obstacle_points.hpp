@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <vector>
 
 #include "mmh/common/voxel_grid.hpp"
@@ -19,14 +20,40 @@ struct EscapeZone {
   double radius = -1.0;  // < 0: none
 };
 
-// Centres of the blocked cells whose centre lies in [lo, hi] and that have at least one
-// 6-neighbour that is not blocked (cells outside the window count as not blocked).
+// A byte mask of the blocked cells whose centres lie in a world box (plus a one-cell border, so
+// that the surface test needs no bounds checks; cells outside the window count as not
+// blocked), built once per seed and used for both queries below.
+class BlockedMask {
+ public:
+  // False if no cell centre lies in [lo, hi].
+  bool build(const VoxelGrid& grid, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+             const EscapeZone& escape);
+  // Centres of the blocked cells with at least one 6-neighbour that is not blocked.
+  void surfacePoints(std::vector<Eigen::Vector3d>* out) const;
+  // Centres of all blocked cells strictly inside `poly` (a . x < b for every face).
+  void pointsInside(const Polytope& poly, std::vector<Eigen::Vector3d>* out) const;
+
+ private:
+  Eigen::Vector3d centerOf(int x, int y, int z) const {
+    return corner_ + Eigen::Vector3d(x, y, z) * res_;
+  }
+  std::vector<uint8_t> mask_;                         // (n + 2) cells per axis, x fastest
+  Eigen::Vector3i n_ = Eigen::Vector3i::Zero();       // cells of the box per axis
+  Eigen::Vector3d corner_ = Eigen::Vector3d::Zero();  // centre of box cell (0, 0, 0)
+  double res_ = 0.1;
+  int64_t sy_ = 0, sz_ = 0;  // strides of the bordered mask
+  struct FaceRow {
+    double base, dy, dz, inv;
+    int sign;
+  };
+  mutable std::vector<FaceRow> faces_;  // scratch of pointsInside
+  mutable std::vector<uint8_t> row_;    // scratch of surfacePoints
+};
+
+// Convenience wrappers (one mask each).
 void blockedSurfacePoints(const VoxelGrid& grid, const Eigen::Vector3d& lo,
                           const Eigen::Vector3d& hi, const EscapeZone& escape,
                           std::vector<Eigen::Vector3d>* out);
-
-// Centres of all blocked cells that lie in [lo, hi] and strictly inside `poly` (a . x < b for
-// every face), found by intersecting each x-row of cells with the polytope.
 void blockedPointsInside(const VoxelGrid& grid, const Eigen::Vector3d& lo,
                          const Eigen::Vector3d& hi, const Polytope& poly, const EscapeZone& escape,
                          std::vector<Eigen::Vector3d>* out);

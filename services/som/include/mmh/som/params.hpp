@@ -13,12 +13,14 @@ namespace mmh::som {
 struct CorridorParams {
   // Obstacle points are taken from a box around each seed segment, this much larger on every
   // side; it also bounds the polytope.
-  double box_margin_m = 1.5;
-  double box_margin_z_m = 0.6;  // vertically
+  double box_margin_m = 1.0;
+  double box_margin_z_m = 0.5;  // vertically
   // Longest seed segment (a sub-segment of the shortened A* path) one polytope is grown around.
   double seed_length_m = 3.0;
   // Hyperplane rounds; an inscribed-ellipsoid step runs between two rounds (FIRI).
   int iterations = 2;
+  // Rounds before the last look only this far around the seed (0: the whole box).
+  double early_round_margin_m = 0.6;
   // The next polytope's seed starts this far back along the path from where the path leaves the
   // current polytope, so that consecutive polytopes overlap by a usable amount.
   double overlap_backoff_m = 0.5;
@@ -30,7 +32,7 @@ struct CorridorParams {
 struct OptimizerParams {
   double time_weight = 1000.0;  // rho in J = int |jerk|^2 dt + rho T
   double piece_length_m = 3.0;  // pieces per polytope = ceil(length / piece_length_m)
-  int samples_per_piece = 8;    // constraint samples per piece (trapezoid rule)
+  int samples_per_piece = 6;    // constraint samples per piece (trapezoid rule)
   double weight_corridor = 1e5;
   double weight_velocity = 1e3;
   double weight_acceleration = 1e3;
@@ -40,15 +42,19 @@ struct OptimizerParams {
   // verification tolerances.
   double limit_margin = 0.01;
   double corridor_margin_m = 0.03;
-  int max_evaluations = 80;
-  // If the result still leaves the corridor: up to this many further runs with a 10x corridor
-  // weight, of this many evaluations each.
-  int extra_rounds = 2;
-  int extra_round_evaluations = 30;
+  int max_evaluations = 60;
+  // If the result still leaves the corridor, or (with a moving start) exceeds the limits by
+  // more than extra_round_limit_excess (relative): up to this many further runs, each with the
+  // weight of what is violated multiplied by the factor, of this many evaluations each.
+  int extra_rounds = 3;
+  int extra_round_evaluations = 40;
+  double extra_round_weight_factor = 10.0;
+  double extra_round_limit_excess = 0.005;
   // Durations are stretched until the exact max speed / acceleration are within this (relative)
   // of the limits.
   double repair_tolerance = 0.002;
-  double rel_cost_tolerance = 1e-5;  // stop when the cost improves less than this (relative)
+  double max_repair_stretch = 4.0;   // at most this total time stretch
+  double rel_cost_tolerance = 1e-3;  // stop when the cost improves less than this (relative)
   int lbfgs_memory = 8;
   double first_step = 0.3;  // length of L-BFGS's first (steepest-descent) step in the variables
 };

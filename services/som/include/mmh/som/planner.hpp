@@ -32,10 +32,15 @@ enum class PlanStatus {
 };
 const char* toString(PlanStatus status);
 
-// Wall-clock time of each step of one plan() call, microseconds.
+// Time of one step of a plan() call, microseconds: wall clock, and CPU time of the calling
+// thread (what the step costs when the machine is shared).
+struct StepTime {
+  double wall_us = 0.0;
+  double cpu_us = 0.0;
+};
+
 struct PlanTimings {
-  double checks_us = 0.0, astar_us = 0.0, corridor_us = 0.0, optimize_us = 0.0, verify_us = 0.0,
-         total_us = 0.0;
+  StepTime checks, astar, corridor, optimize, verify, total;
 };
 
 struct PlanOutput {

@@ -28,7 +28,7 @@ struct OptimizerOutput {
   int evaluations = 0;
   int nlopt_result = 0;  // nlopt_result code of the last run
   int repairs = 0;       // time-stretch steps needed to meet the limits exactly
-  int extra_rounds = 0;  // runs with a raised corridor weight
+  int extra_rounds = 0;  // runs with a raised corridor or limit weight
   std::string message;
 };
 
@@ -62,12 +62,20 @@ class TrajectoryOptimizer {
   double runNlopt(Eigen::VectorXd& x, int max_evaluations, int* result, std::string* message);
   // Worst distance outside its polytope over samples twice as dense as the penalty's.
   double corridorViolation(const Eigen::VectorXd& x);
+  // The time stretch the maxima at x call for: max(v / v_max, sqrt(a / a_max)).
+  double limitExcess(const Eigen::VectorXd& x);
+  // Max speed and acceleration over 32 samples per piece.
+  static void sampledMaxima(const Trajectory& traj, double* speed, double* acc);
   double evaluate(const Eigen::VectorXd& x, Eigen::VectorXd* grad, double* control, double* time,
                   double* penalty);
 
   OptimizerParams params_;
   double max_vel_, max_acc_;
-  double corridor_boost_ = 1.0;  // multiplies the corridor weight in extra rounds
+  double corridor_boost_ = 1.0;  // multiply the corridor / limit weights in extra rounds
+  double limit_boost_ = 1.0;
+  // A start at rest: stretching all durations scales speeds and accelerations exactly, so the
+  // final stretch can fix any excess; a moving start fixes its first moments.
+  bool moving_start_ = false;
   const Corridor* corridor_ = nullptr;
   int pieces_ = 0;
   std::vector<int> piece_polytope_;
