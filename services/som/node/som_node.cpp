@@ -24,6 +24,8 @@ int16_t reasonCode(som::PlanStatus status) {
       return plan_result_t::REASON_TARGET_OUT_OF_BOUNDS;
     case S::kInfeasibleStart:
       return plan_result_t::REASON_INFEASIBLE_START;
+    case S::kStartEqualsTarget:
+      return plan_result_t::REASON_START_EQUALS_TARGET;
     case S::kNoPath:
       return plan_result_t::REASON_NO_PATH;
     case S::kCorridor:

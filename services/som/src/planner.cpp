@@ -24,6 +24,8 @@ const char* toString(PlanStatus status) {
       return "target out of bounds";
     case PlanStatus::kInfeasibleStart:
       return "infeasible start";
+    case PlanStatus::kStartEqualsTarget:
+      return "start equals target";
     case PlanStatus::kNoPath:
       return "no path";
     case PlanStatus::kCorridor:
@@ -117,6 +119,9 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
   if (start.velocity.norm() > p.max_vel_mps * tol ||
       start.acceleration.norm() > p.max_acc_mps2 * tol)
     return finish(PlanStatus::kInfeasibleStart, "start speed or acceleration above the limits");
+  if ((target - start.position).norm() < 1e-3 && start.velocity.norm() < 1e-3 &&
+      start.acceleration.norm() < 1e-3)
+    return finish(PlanStatus::kStartEqualsTarget, "already at rest on the target");
   if (grid.isOccupiedPoint(start.position))
     return finish(PlanStatus::kStartInObstacle, "start lies in an occupied voxel");
   if (grid.isBlockedPoint(target))

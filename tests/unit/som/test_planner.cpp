@@ -167,6 +167,12 @@ TEST(SomPlanner, OtherRefusals) {
   EXPECT_EQ(planner.plan(*w.grid, fast, w.target).status, PlanStatus::kInfeasibleStart);
   // No map.
   EXPECT_EQ(planner.plan(mmh::VoxelGrid(), atRest(w.start), w.target).status, PlanStatus::kNoMap);
+  // Already at rest on the target: nothing to plan (moving through it is a real request).
+  EXPECT_EQ(planner.plan(*w.grid, atRest(w.start), w.start).status,
+            PlanStatus::kStartEqualsTarget);
+  mmh::KinematicState moving = atRest(w.start);
+  moving.velocity = Vector3d(1.0, 0, 0);
+  EXPECT_NE(planner.plan(*w.grid, moving, w.start).status, PlanStatus::kStartEqualsTarget);
 }
 
 TEST(SomPlanner, ParamsFromConfig) {

@@ -25,6 +25,7 @@ enum class PlanStatus {
   kTargetInObstacle,   // target inside the inflated obstacles
   kTargetOutOfBounds,  // target outside the geofence or the map window
   kInfeasibleStart,    // start speed or acceleration above the limits
+  kStartEqualsTarget,  // at rest on the target already: nothing to plan
   kNoPath,             // A* found no path (or ran out of its node budget)
   kCorridor,           // the safe flight corridor could not be built
   kOptimizer,          // the optimiser produced no usable result
