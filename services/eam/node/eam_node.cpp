@@ -127,6 +127,13 @@ void EamNode::onPlanRequest(const plan_request_t& req) {
     ctx_.increment("failed_reason_" + std::to_string(out.reason));
   }
   if (result.narrow) ctx_.increment("narrow_weights");
+  logDebug("request " + std::to_string(req.request_id) + ": " + (result.ok ? "ok" : out.detail) +
+           ", duration " + std::to_string(result.stats.initial_duration_s) + " -> " +
+           std::to_string(result.trajectory.duration()) + " s, rounds " +
+           std::to_string(result.stats.rounds) + ", refines " +
+           std::to_string(result.stats.refines) + ", restarts " +
+           std::to_string(result.stats.restarts) + ", max acc " +
+           std::to_string(result.stats.max_acc));
   out.compute_us = wallTimeUs() - started;
   ctx_.publish(channels::kPlanResult, out);
 }

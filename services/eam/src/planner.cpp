@@ -59,12 +59,65 @@ CostSettings costSettings(const EamParams& p) {
   return s;
 }
 
-// Slower everywhere: the same control points on a longer knot span (the same curve, speeds /
-// ratio, accelerations / ratio^2), except the first three, which must keep reproducing the
-// start state.
-void reallocateTime(UniformBspline& spline, double ratio, const KinematicState& start) {
-  spline.setKnotSpan(spline.knotSpan() * ratio * kRefineMargin);
-  spline.controlPoints().leftCols(3) = UniformBspline::startControlPoints(start, spline.knotSpan());
+// Slower by `ratio`, without a kink at the start. A uniform stretch of the curve would also
+// slow its start, which the request fixes; re-solving only the first control points then leaves
+// a jump in speed there that shows up as a large deceleration (and more stretching). Instead the
+// curve is re-timed through a warp tau(t) whose rate blends smoothly from 1 (start state kept:
+// tau' = 1, tau'' = 0 at t = 0) to 1 / ratio over a blend time long enough to shed the speed at
+// half of a_max, and the control points are re-sampled (same count, longer knot span). Anchor
+// pairs and the free mask follow their control points to the new times.
+void slowDown(UniformBspline& spline, PairSet& pairs, std::vector<char>& free_mask, double ratio,
+              const KinematicState& start, double max_acc_mps2) {
+  const double k = std::max(1.0, ratio * kRefineMargin);
+  const UniformBspline old = spline;
+  const double dt_old = old.knotSpan();
+  const double t_old = old.duration();
+  const int n = old.numControlPoints();
+  const int segments = old.numSegments();
+  const double drop = 1.0 - 1.0 / k;
+  // Blend time: tangential deceleration of the warp peaks at 1.5 |v0| drop / T_b.
+  double blend = std::max(2.0 * dt_old * k, 3.0 * start.velocity.norm() * drop / max_acc_mps2);
+  // tau at the end of the blend; keep the blend inside the curve.
+  auto tau_blend = [&](double b) { return b * (1.0 / k + 0.5 * drop); };
+  while (blend > 0.0 && tau_blend(blend) > 0.8 * t_old) blend *= 0.5;
+  const double tau_b = tau_blend(blend);
+  const double t_new = blend + k * (t_old - tau_b);
+  const double dt = t_new / segments;
+  // Warp and its first two derivatives (rate s = tau', s' = tau'').
+  auto warp = [&](double t, double* rate, double* rate_dot) {
+    if (t < blend) {
+      const double x = t / blend;
+      *rate = 1.0 / k + drop * (1.0 - 3.0 * x * x + 2.0 * x * x * x);
+      *rate_dot = drop * (-6.0 * x + 6.0 * x * x) / blend;
+      return t / k + drop * blend * (x - x * x * x + 0.5 * x * x * x * x);
+    }
+    *rate = 1.0 / k;
+    *rate_dot = 0.0;
+    return tau_b + (t - blend) / k;
+  };
+  Eigen::Matrix3Xd q = old.controlPoints();
+  PairSet new_pairs(pairs.size());
+  std::vector<char> new_free(free_mask.size(), 0);
+  auto old_index = [&](double tau) {
+    return std::clamp(static_cast<int>(std::lround(tau / dt_old + 1.0)), 0, n - 1);
+  };
+  for (int i = 3; i < segments; ++i) {
+    const double t = (i - 1) * dt;
+    double rate = 0.0, rate_dot = 0.0;
+    const double tau = std::min(warp(t, &rate, &rate_dot), t_old);
+    const Eigen::Vector3d acc =
+        old.evaluate(2, tau) * rate * rate + old.evaluate(1, tau) * rate_dot;
+    q.col(i) = old.evaluate(0, tau) - dt * dt / 6.0 * acc;
+    const int j = old_index(tau);
+    if (j < static_cast<int>(pairs.size())) new_pairs[i] = pairs[j];
+    if (j < static_cast<int>(free_mask.size()) && i < static_cast<int>(new_free.size()))
+      new_free[i] = free_mask[j];
+  }
+  for (int i = 0; i < 3 && i < static_cast<int>(new_free.size()); ++i) new_free[i] = free_mask[i];
+  q.leftCols(3) = UniformBspline::startControlPoints(start, dt);
+  spline = UniformBspline(q, dt);
+  pairs = std::move(new_pairs);
+  free_mask = std::move(new_free);
 }
 
 // Integral of |jerk|^2 over pieces of degree <= 3 (jerk 6 c3, constant per piece); exact. The
@@ -245,7 +298,7 @@ Planner::RoundsOutcome Planner::runRounds(const VoxelGrid& grid, const PlanReque
         outcome = RoundsOutcome::kCollisionFree;
         break;
       }
-      reallocateTime(at.spline, ratio, req.start);
+      slowDown(at.spline, at.pairs, at.free_mask, ratio, req.start, P.max_acc_mps2);
       ++at.refines;
       ++r.stats.refines;
       if (trace_) trace_("refine: knot span x " + std::to_string(ratio * kRefineMargin));
@@ -255,7 +308,7 @@ Planner::RoundsOutcome Planner::runRounds(const VoxelGrid& grid, const PlanReque
     if (at.round > 0 && at.refines < P.max_refine_rounds) {
       const double ratio = limitRatio(at.spline, P);
       if (ratio > kRefineWhileColliding) {
-        reallocateTime(at.spline, ratio, req.start);
+        slowDown(at.spline, at.pairs, at.free_mask, ratio, req.start, P.max_acc_mps2);
         ++at.refines;
         ++r.stats.refines;
         if (trace_) trace_("refine while colliding: x " + std::to_string(ratio * kRefineMargin));

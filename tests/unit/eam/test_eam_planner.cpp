@@ -6,6 +6,8 @@
 #include <limits>
 #include <random>
 
+#include <Eigen/Dense>
+
 #include "eam_test_grids.hpp"
 #include "mmh/common/config.hpp"
 #include "mmh/eam/initial_guess.hpp"
@@ -111,6 +113,49 @@ TEST(EamPlanner, KeepsAMovingStartStateExactly) {
   req.target = Vector3d(10.0, 1.0, 1.5);
   const PlanResult r = planner.plan(g, req);  // no reference: straight quintic guess
   expectValid(g, req, r, p);
+}
+
+// A committed trajectory cruising along +x at `speed` for `cruise_s`, then braking to rest on
+// a quintic of duration `brake_s` (the shape of an FPM answer in open space).
+mmh::Trajectory cruiseThenBrake(const Vector3d& p0, double speed, double cruise_s, double brake_s) {
+  mmh::Piece cruise;
+  cruise.duration = cruise_s;
+  cruise.coeffs.col(0) = p0;
+  cruise.coeffs.col(1) = Vector3d(speed, 0, 0);
+  mmh::Piece brake;
+  brake.duration = brake_s;
+  brake.coeffs.col(0) = p0 + Vector3d(speed * cruise_s, 0, 0);
+  brake.coeffs.col(1) = Vector3d(speed, 0, 0);
+  // x(t) = x0 + v t + c3 t^3 + c4 t^4 + c5 t^5 with x' = x'' = 0 at T and x(T) = x0 + v T / 2.
+  const double T = brake_s;
+  Eigen::Matrix3d A;
+  A << T * T * T, T * T * T * T, T * T * T * T * T, 3 * T * T, 4 * T * T * T, 5 * T * T * T * T,
+      6 * T, 12 * T * T, 20 * T * T * T;
+  const Vector3d c = A.colPivHouseholderQr().solve(Vector3d(-speed * T / 2.0, -speed, 0.0));
+  for (int k = 0; k < 3; ++k) brake.coeffs(0, 3 + k) = c(k);
+  return mmh::Trajectory({cruise, brake});
+}
+
+TEST(EamPlanner, SlowingDownFromCruiseSpeedKeepsTheStartAndDoesNotCrawl) {
+  // Cruising at v_max when a pillar appears on the committed trajectory: the detour needs more
+  // than a_max at full speed, so time is re-allocated. The slow-down must keep the start state
+  // without a kink (a kink asks for a large deceleration, hence more stretching, the old
+  // failure that turned a 6 s detour into 30 s or none at all) and cost only what the detour
+  // needs.
+  mmh::VoxelGrid g = eam_test::freeGrid();
+  eam_test::addPillar(g, 7.0, 0.05, 0.4);  // where the committed trajectory brakes
+  const auto p = params();
+  mmh::eam::Planner planner(p);
+  PlanRequest req;
+  req.start.position = Vector3d(0.0, 0.0, 1.2);
+  req.start.velocity = Vector3d(p.max_vel_mps, 0.0, 0.0);
+  req.reference = cruiseThenBrake(req.start.position, p.max_vel_mps, 2.0, 3.0);
+  req.target = req.reference.position(req.reference.duration());
+  ASSERT_GE(eam_test::firstBlockedTime(g, req.reference, true), 0.0);
+  const PlanResult r = planner.plan(g, req);
+  expectValid(g, req, r, p);
+  EXPECT_GE(r.stats.refines, 1);
+  EXPECT_LT(r.trajectory.duration(), 2.0 * r.stats.initial_duration_s);
 }
 
 TEST(EamPlanner, StartInTheInflatedMarginMayLeaveIt) {
