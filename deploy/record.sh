@@ -3,9 +3,10 @@
 #
 #   deploy/record.sh [FILE] [--lcm-url URL] [--channel REGEX] [--quiet]
 #
-# FILE defaults to logs/mmh-<date>.lcm; an existing file is never overwritten: lcm-logger's -i
-# appends .00, .01, ... (Debian's --increment spelling is broken in LCM 1.3.1, -i works).
-# Stop with Ctrl-C (or SIGTERM); replay with lcm-logplayer FILE or build/bin/mmh-replay FILE.
+# FILE defaults to logs/mmh-<date>.lcm; lcm-logger's -i always appends .00, .01, ... (the first
+# free one), so an existing log is never overwritten and the log is FILE.00 the first time
+# (Debian's --increment spelling is broken in LCM 1.3.1, -i works). The real name is printed.
+# Stop with Ctrl-C (or SIGTERM); replay with lcm-logplayer FILE.00 (see the README).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 file=""
@@ -27,5 +28,7 @@ mkdir -p "$(dirname "$file")"
 if [ -n "${LCM_DEFAULT_URL:-}" ] && ! printf '%s\n' "${args[@]:-}" | grep -q -- --lcm-url; then
   args+=("--lcm-url=$LCM_DEFAULT_URL")
 fi
-echo "recording to $file (Ctrl-C to stop)" >&2
+n=0
+while [ -e "$(printf '%s.%02d' "$file" "$n")" ]; do n=$((n + 1)); done
+echo "recording to $(printf '%s.%02d' "$file" "$n") (Ctrl-C to stop)" >&2
 exec lcm-logger -i "${args[@]}" "$file"

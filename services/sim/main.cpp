@@ -65,12 +65,15 @@ int main(int argc, char** argv) {
         const int64_t now = mmh::wallTimeUs();
         const int64_t wait_ms = (due - now) / 1000;
         if (lcm->handleTimeout(static_cast<int>(std::clamp<int64_t>(wait_ms, 0, 100))) < 0) {
+          // SIGINT/SIGTERM interrupt the wait (EINTR): a stop, reported with the metrics below.
+          if (mmh::stopRequested()) break;
           mmh::logError("mmh-sim: LCM handle failed; stopping");
           return 1;
         }
         if (mmh::wallTimeUs() >= due || mmh::stopRequested()) break;
         if (wait_ms <= 0) std::this_thread::sleep_for(std::chrono::microseconds(200));
       }
+      if (mmh::stopRequested()) break;
       sim.step();
       ctx.maybePublishHeartbeat(mmh::wallTimeUs());
       if (exit_when_finished && sim.finished()) break;

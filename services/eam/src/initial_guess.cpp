@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace mmh::eam {
 namespace {
@@ -31,13 +32,21 @@ Trajectory straightQuintic(const KinematicState& start, const Eigen::Vector3d& t
   const double alim = std::max(max_acc_mps2, start.acceleration.norm()) * (1.0 + 1e-6);
   // Lower bound: no rest-to-rest curve covers dist faster than at constant v_max.
   double T = std::max({0.2, dist / max_vel_mps, start.velocity.norm() / max_acc_mps2});
-  Trajectory traj;
-  for (int iter = 0; iter < 100; ++iter) {
-    traj = Trajectory({quinticPiece(start, target, T)});
-    if (traj.maxSpeed() <= vlim && traj.maxAcceleration() <= alim) break;
-    T *= 1.1;
+  // Longer is not always better: from a moving start a long quintic first flies on with the
+  // start velocity and comes back, so its speed grows again. Keep the least-violating duration
+  // (a guess only; the optimiser and the time re-allocation enforce the limits).
+  Trajectory best;
+  double best_excess = std::numeric_limits<double>::infinity();
+  for (int iter = 0; iter < 40; ++iter, T *= 1.1) {
+    Trajectory traj({quinticPiece(start, target, T)});
+    const double excess = std::max(traj.maxSpeed() / vlim, traj.maxAcceleration() / alim);
+    if (excess < best_excess) {
+      best_excess = excess;
+      best = std::move(traj);
+    }
+    if (excess <= 1.0) break;
   }
-  return traj;
+  return best;
 }
 
 UniformBspline sampleToBspline(const Trajectory& guess, const KinematicState& start,

@@ -68,7 +68,9 @@ CostSettings costSettings(const EamParams& p) {
 // pairs and the free mask follow their control points to the new times.
 void slowDown(UniformBspline& spline, PairSet& pairs, std::vector<char>& free_mask, double ratio,
               const KinematicState& start, double max_acc_mps2) {
-  const double k = std::max(1.0, ratio * kRefineMargin);
+  // One slow-down at most triples the duration (more refines may follow): a larger factor asks
+  // for a blend the knot span cannot follow.
+  const double k = std::clamp(ratio * kRefineMargin, 1.0, 3.0);
   const UniformBspline old = spline;
   const double dt_old = old.knotSpan();
   const double t_old = old.duration();
@@ -79,7 +81,12 @@ void slowDown(UniformBspline& spline, PairSet& pairs, std::vector<char>& free_ma
   double blend = std::max(2.0 * dt_old * k, 3.0 * start.velocity.norm() * drop / max_acc_mps2);
   // tau at the end of the blend; keep the blend inside the curve.
   auto tau_blend = [&](double b) { return b * (1.0 / k + 0.5 * drop); };
-  while (blend > 0.0 && tau_blend(blend) > 0.8 * t_old) blend *= 0.5;
+  if (!std::isfinite(k) || tau_blend(blend) > 0.8 * t_old) {
+    // Too short a curve for a blend: the plain stretch (the start kink is small here).
+    spline.setKnotSpan(dt_old * k);
+    spline.controlPoints().leftCols(3) = UniformBspline::startControlPoints(start, dt_old * k);
+    return;
+  }
   const double tau_b = tau_blend(blend);
   const double t_new = blend + k * (t_old - tau_b);
   const double dt = t_new / segments;

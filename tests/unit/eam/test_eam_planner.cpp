@@ -320,6 +320,24 @@ TEST(EamInitialGuess, StraightQuinticRespectsTheLimits) {
   EXPECT_LT(q.velocity(q.duration()).norm(), 1e-9);
 }
 
+TEST(EamInitialGuess, StartAtTheAccelerationLimitGivesABoundedGuess) {
+  // A start turning at nearly a_max (seen in a flight): every quintic from it exceeds a_max a
+  // little just after t = 0, whatever its duration. The guess must still be a sensible size (it
+  // once grew to 67000 s and 1e8 m, which froze the collision scan), keep the start state and
+  // end at the target.
+  mmh::KinematicState s;
+  s.position = Vector3d(-17.2262, 0.0518, 1.2);
+  s.velocity = Vector3d(2.09582, 0.398318, 0);
+  s.acceleration = Vector3d(0.739547, 1.81379, 0);
+  const Vector3d target(-2.5, 0.0312835, 1.2);
+  const mmh::Trajectory q = mmh::eam::straightQuintic(s, target, 3.0, 2.0);
+  EXPECT_LT(q.duration(), 30.0);
+  EXPECT_LT(q.maxSpeed(), 3.0 * 1.05);
+  EXPECT_LT(q.maxAcceleration(), 2.0 * 1.1);
+  EXPECT_LT((q.velocity(0.0) - s.velocity).norm(), 1e-12);
+  EXPECT_LT((q.position(q.duration()) - target).norm(), 1e-9);
+}
+
 TEST(EamParams, DefaultsLoadAndBadValuesNameTheKey) {
   const auto p = params();
   EXPECT_GT(p.lambda_collision_narrow, p.lambda_collision_open);
