@@ -191,7 +191,7 @@ LogSummary summarizeLog(const std::string& path) {
       }
       ++v.outcomes[m.outcome];
       v.decisions.push_back({(e->timestamp - s.first_us) * 1e-6, m.trigger, m.outcome,
-                             m.committed_mode, m.awareness_safe, m.position[0], m.position[1],
+                             m.committed_mode, m.awareness_safe != 0, m.position[0], m.position[1],
                              m.detail});
       if (m.outcome == arbiter_status_t::OUTCOME_COMMITTED ||
           m.outcome == arbiter_status_t::OUTCOME_STOPPING)
