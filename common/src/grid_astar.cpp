@@ -39,6 +39,13 @@ const char* toString(AStarResult::Status status) {
   return "?";
 }
 
+void GridAStar::reserve(int64_t num_cells) {
+  if (static_cast<int64_t>(cells_.size()) == num_cells) return;
+  cells_.assign(num_cells, CellState{});
+  generation_ = 0;
+  open_.reserve(1 << 16);
+}
+
 AStarResult GridAStar::search(const VoxelGrid& grid, const Eigen::Vector3d& start,
                               const Eigen::Vector3d& goal, const AStarOptions& options) {
   AStarResult result;
@@ -79,11 +86,7 @@ AStarResult GridAStar::search(const VoxelGrid& grid, const Eigen::Vector3d& star
     return result;
   }
 
-  const int64_t n = grid.numCells();
-  if (static_cast<int64_t>(cells_.size()) != n) {
-    cells_.assign(n, CellState{});
-    generation_ = 0;
-  }
+  reserve(grid.numCells());
   if (++generation_ >= kClosedBit) {
     for (CellState& c : cells_) c.stamp = 0;
     generation_ = 1;

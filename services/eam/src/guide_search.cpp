@@ -35,13 +35,7 @@ void GuideSearch::prepare(const VoxelGrid& grid) {
   if (!grid.valid()) return;
   if (static_cast<int64_t>(slot_memo_.size()) != grid.numCells())
     slot_memo_.assign(grid.numCells(), 0);
-  // A search from a free cell to itself sizes A*'s arrays and returns at once.
-  for (int64_t i = 0; i < grid.numCells(); i += 97) {
-    if (grid.isBlockedLinear(i) || grid.atLinear(i) == Occupancy::kOccupied) continue;
-    const Eigen::Vector3d p = grid.centerOfLocal(grid.localFromLinear(i));
-    astar_.search(grid, p, p);
-    return;
-  }
+  astar_.reserve(grid.numCells());
 }
 
 AStarResult GuideSearch::find(const VoxelGrid& grid, const Eigen::Vector3d& from,

@@ -51,6 +51,7 @@ void SomNode::onLocalMap(const local_map_t& msg) {
   switch (receiver_.apply(msg, &reason)) {
     case LocalMapReceiver::Result::kApplied:
       ctx_.increment("maps_applied");
+      if (receiver_.lastWasKeyframe()) planner_.prepare(receiver_.grid());  // cheap unless resized
       break;
     case LocalMapReceiver::Result::kGap:
       ctx_.increment("map_gap");

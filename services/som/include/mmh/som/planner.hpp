@@ -68,6 +68,9 @@ class Planner {
   // inflation radius is the planning margin.
   PlanOutput plan(const VoxelGrid& grid, const KinematicState& start,
                   const Eigen::Vector3d& target);
+  // Sizes the per-cell search arrays for this grid's window (call when a map arrives; cheap
+  // unless the window size changed) so that plan() does not pay for it.
+  void prepare(const VoxelGrid& grid) { astar_.reserve(grid.numCells()); }
 
  private:
   SomParams params_;
