@@ -399,7 +399,9 @@ void Arbiter::decide(int64_t now, bool by_deadline) {
   const bool danger = collisionAhead(now);
   const bool out_of_modes = chooseModes(Trigger::kRetry).empty();
   pushDecision(d);
-  if (danger && (out_of_modes || by_deadline)) {
+  // A stop already under way brakes as hard as a new one would: recommitting it only resets it.
+  const bool braking = committed_mode_ == Mode::kStop;
+  if (danger && !braking && (out_of_modes || by_deadline)) {
     commitStop(now, "no usable answer and danger ahead: " + notes, p.trigger);
   }
 }

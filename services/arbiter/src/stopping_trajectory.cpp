@@ -6,6 +6,21 @@
 #include "mmh/common/minco.hpp"
 
 namespace mmh::arbiter {
+namespace {
+
+// A start may already accelerate harder than a_max (an emergency answer is accepted 5% over it):
+// the stop may then keep that acceleration, never more, or no stop would ever fit.
+double accelerationLimit(const KinematicState& start, double max_acc_mps2) {
+  return std::max(max_acc_mps2, start.acceleration.norm()) * (1.0 + 1e-6);
+}
+
+// Longest stop worth trying: well past a bang-bang stop at half the deceleration. Beyond it a
+// stop only drifts farther along (a stop of a minute once ran straight through the forest).
+double longestStop(double speed, double max_acc_mps2) {
+  return 4.0 * speed / max_acc_mps2 + 2.0;
+}
+
+}  // namespace
 
 Trajectory makeStoppingTrajectory(const KinematicState& start, double max_acc_mps2,
                                   double max_vel_mps) {
@@ -21,8 +36,12 @@ Trajectory makeStoppingTrajectory(const KinematicState& start, double max_acc_mp
   const Eigen::Vector3d dir =
       speed > 1e-6 ? Eigen::Vector3d(start.velocity / speed) : Eigen::Vector3d::Zero();
   const double speed_limit = std::max(max_vel_mps, speed);
+  const double acc_limit = accelerationLimit(start, max_acc_mps2);
+  // The shortest stop within the limits; if none fits, the one with the gentlest peak.
   Trajectory best;
-  for (double total = std::max(0.2, 1.05 * speed / max_acc_mps2);; total *= 1.08) {
+  double best_peak = INFINITY;
+  for (double total = std::max(0.2, 1.05 * speed / max_acc_mps2);
+       total <= longestStop(speed, max_acc_mps2); total *= 1.08) {
     const double decel = speed / total;
     MincoJerk minco;
     Eigen::Matrix3d head, tail;
@@ -37,12 +56,15 @@ Trajectory makeStoppingTrajectory(const KinematicState& start, double max_acc_mp
       inner.col(i - 1) = start.position + dir * (speed * t - 0.5 * decel * t * t);
     }
     minco.setParameters(inner, Eigen::VectorXd::Constant(pieces, total / pieces));
-    best = minco.trajectory();
-    if ((best.maxAcceleration() <= max_acc_mps2 && best.maxSpeed() <= speed_limit * 1.0001) ||
-        total > 60.0) {
-      return best;
+    Trajectory stop = minco.trajectory();
+    const double peak = stop.maxAcceleration();
+    if (peak <= acc_limit && stop.maxSpeed() <= speed_limit * 1.0001) return stop;
+    if (peak < best_peak) {
+      best = std::move(stop);
+      best_peak = peak;
     }
   }
+  return best;
 }
 
 Trajectory makeStoppingTrajectory(const Trajectory& path, double t0, double max_acc_mps2,
@@ -53,11 +75,12 @@ Trajectory makeStoppingTrajectory(const Trajectory& path, double t0, double max_
   if (speed < 1e-3 || remaining <= 1e-3)
     return makeStoppingTrajectory(start, max_acc_mps2, max_vel_mps);
   const double speed_limit = std::max(max_vel_mps, speed);
+  const double acc_limit = accelerationLimit(start, max_acc_mps2);
   // Time warp tau(t) with tau' = 1 - 3 u^2 + 2 u^3 (u = t / T): tau'' = 0 at both ends, so the
   // acceleration is continuous at the start and zero at rest; the curve is followed up to
   // tau(T) = T / 2. Peak path deceleration is 1.5 speed / T.
   for (double total = std::max(0.3, 1.5 * speed / (0.9 * max_acc_mps2));; total *= 1.1) {
-    if (0.5 * total > remaining) {
+    if (0.5 * total > remaining || total > 1.5 * longestStop(speed, max_acc_mps2)) {
       // Not enough path left to brake on: the straight stop from the same state.
       return makeStoppingTrajectory(start, max_acc_mps2, max_vel_mps);
     }
@@ -75,10 +98,7 @@ Trajectory makeStoppingTrajectory(const Trajectory& path, double t0, double max_
     for (int i = 1; i < pieces; ++i) inner.col(i - 1) = path.position(warp(total * i / pieces));
     minco.setParameters(inner, Eigen::VectorXd::Constant(pieces, total / pieces));
     Trajectory stop = minco.trajectory();
-    if ((stop.maxAcceleration() <= max_acc_mps2 && stop.maxSpeed() <= speed_limit * 1.0001) ||
-        total > 60.0) {
-      return stop;
-    }
+    if (stop.maxAcceleration() <= acc_limit && stop.maxSpeed() <= speed_limit * 1.0001) return stop;
   }
 }
 

@@ -32,3 +32,39 @@ TEST(StoppingTrajectory, AtRestItHolds) {
   EXPECT_TRUE(t.position(0.5).isApprox(s.position));
   EXPECT_LT(t.maxSpeed(), 1e-12);
 }
+
+// A start that already brakes at (or, after a tolerated emergency answer, above) a_max: the stop
+// keeps at most that acceleration and takes about as long as braking at a_max, not a minute.
+TEST(StoppingTrajectory, StartAtOrAboveTheAccelerationLimitStopsPromptly) {
+  for (const Eigen::Vector3d& acc :
+       {Eigen::Vector3d(-2.0, 0.0, 0.0), Eigen::Vector3d(-2.0, 0.6, 0.0),
+        Eigen::Vector3d(-1.2, 1.7, 0.0), Eigen::Vector3d(0.5, 2.0, 0.2)}) {
+    mmh::KinematicState s;
+    s.position = Eigen::Vector3d(0, 0, 1.2);
+    s.velocity = Eigen::Vector3d(3.0, 0.0, 0.0);
+    s.acceleration = acc;
+    const mmh::Trajectory t = mmh::arbiter::makeStoppingTrajectory(s, 2.0, 3.0);
+    EXPECT_LT((t.acceleration(0) - acc).norm(), 1e-9);
+    EXPECT_LT(t.velocity(t.duration()).norm(), 1e-6);
+    EXPECT_LE(t.maxAcceleration(), std::max(2.0, acc.norm()) * 1.01) << acc.transpose();
+    EXPECT_LT(t.duration(), 4.0 * 3.0 / 2.0 + 2.0) << acc.transpose();
+    EXPECT_LT((t.position(t.duration()) - s.position).norm(), 2.5 * 9.0 / 4.0 + 0.5);
+  }
+}
+
+TEST(StoppingTrajectory, RestoppingAStopInProgressKeepsBraking) {
+  mmh::KinematicState s;
+  s.position = Eigen::Vector3d(0, 0, 1.2);
+  s.velocity = Eigen::Vector3d(3.0, 0.0, 0.0);
+  const mmh::Trajectory first = mmh::arbiter::makeStoppingTrajectory(s, 2.0, 3.0);
+  const Eigen::Vector3d end = first.position(first.duration());
+  for (double t0 : {0.2, 0.5, 0.9}) {
+    const mmh::Trajectory again = mmh::arbiter::makeStoppingTrajectory(first, t0, 2.0, 3.0);
+    const mmh::KinematicState at = first.state(t0);
+    EXPECT_LT((again.acceleration(0) - at.acceleration).norm(), 1e-9);
+    EXPECT_LE(again.maxAcceleration(), std::max(2.0, at.acceleration.norm()) * 1.01);
+    EXPECT_LT(again.duration(), first.duration() - t0 + 3.0);
+    // It does not carry the vehicle much past where the first stop ended.
+    EXPECT_LT((again.position(again.duration()) - end).norm(), 1.0) << t0;
+  }
+}
