@@ -226,10 +226,12 @@ void Arbiter::startPlanning(Trigger trigger, const std::vector<Mode>& modes, int
   p.start = stateAt(p.start_utime);
   Trajectory reference;
   // EAM on a collision re-optimises the rest of the committed trajectory, ending where it ends,
-  // unless that end itself is now inside an obstacle.
-  const bool use_reference = trigger == Trigger::kCollision && hasCommitted() && grid_ &&
-                             !grid_->isBlockedPoint(committed_.position(committed_.duration())) &&
-                             (p.start_utime - committed_start_) * kUs < committed_.duration() - 0.2;
+  // unless that end itself is now inside an obstacle (with the planners' margin, which is wider
+  // than the arbiter's own check: EAM refuses a target inside it).
+  const bool use_reference =
+      trigger == Trigger::kCollision && hasCommitted() && grid_ &&
+      isClearOf(*grid_, committed_.position(committed_.duration()), params_.inflation_m) &&
+      (p.start_utime - committed_start_) * kUs < committed_.duration() - 0.2;
   if (use_reference) {
     reference = committed_.tail((p.start_utime - committed_start_) * kUs);
     p.target = committed_.position(committed_.duration());
