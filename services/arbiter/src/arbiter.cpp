@@ -74,7 +74,11 @@ void Arbiter::onMapUpdated(const VoxelGrid& grid, int64_t map_seq, int64_t map_u
   now_ = std::max(now_, now);
   if (stopped_for_stale_map_ && !mapStale(now_)) stopped_for_stale_map_ = false;
   // Rule (2): a newly mapped obstacle on the rest of the committed trajectory.
-  if (hasCommitted() && !pending_ && !reached_ && collisionThreat(now_)) collision_detected_ = true;
+  double eta_s = 0.0;
+  if (hasCommitted() && !pending_ && !reached_ && collisionThreat(now_, &eta_s)) {
+    collision_eta_s_ = collision_detected_ ? std::min(collision_eta_s_, eta_s) : eta_s;
+    collision_detected_ = true;
+  }
   evaluate(now_);
 }
 
@@ -119,11 +123,12 @@ bool Arbiter::collisionAhead(int64_t now) const {
   return firstCollisionTime(*grid_, committed_, t0, committed_.duration()).has_value();
 }
 
-bool Arbiter::collisionThreat(int64_t now) const {
+bool Arbiter::collisionThreat(int64_t now, double* eta_s) const {
   if (!grid_ || !hasCommitted()) return false;
   const double elapsed = std::max(0.0, (now - committed_start_) * kUs);
   const auto hit = firstCollisionTime(*grid_, committed_, elapsed, committed_.duration());
   if (!hit) return false;
+  if (eta_s) *eta_s = *hit - elapsed;
   // The halfway replan plans with this map before the vehicle gets there: leave it to it.
   const bool halfway_replan_pending = usesLazyRules(params_.policy) && !committed_ends_at_goal_ &&
                                       elapsed < 0.5 * committed_.duration();
@@ -136,8 +141,11 @@ bool Arbiter::collisionThreat(int64_t now) const {
 
 Trigger Arbiter::nextTrigger(int64_t now) const {
   if (goal_changed_) return hasCommitted() ? Trigger::kGoalChanged : Trigger::kInitial;
-  if (collision_detected_) return Trigger::kCollision;
-  if (last_failed_) return chooseModes(Trigger::kRetry).empty() ? Trigger::kNone : Trigger::kRetry;
+  // After a failed round the fallback chain goes on (a collision seen again on the next map must
+  // not restart it with EAM forever, never reaching SOM or the stop).
+  const bool can_retry = last_failed_ && !chooseModes(Trigger::kRetry).empty();
+  if (collision_detected_ && !can_retry) return Trigger::kCollision;
+  if (last_failed_) return can_retry ? Trigger::kRetry : Trigger::kNone;
   if (!hasCommitted()) return Trigger::kInitial;
   const double elapsed = (now - committed_start_) * kUs;
   if (usesLazyRules(params_.policy)) {
@@ -170,13 +178,14 @@ std::vector<Mode> Arbiter::chooseModes(Trigger trigger) const {
   }
   if (p == Policy::kEgo) return {Mode::kEam};
   if (p == Policy::kSom) return {Mode::kSom};
-  if (trigger == Trigger::kCollision) {
-    if (params_.parallel_modes) return {Mode::kEam, Mode::kSom};
+  const bool emergency = collision_eta_s_ <= params_.emergency_horizon_s;
+  if (trigger == Trigger::kCollision && (emergency || !usesAwareness(p))) {
+    if (params_.parallel_modes != ParallelModes::kNone) return {Mode::kEam, Mode::kSom};
     return {Mode::kEam};
   }
   const bool safe = usesAwareness(p) ? awareness_safe_ : false;
   if (safe) return {Mode::kFpm};
-  if (params_.parallel_modes) return {Mode::kSom, Mode::kEam};
+  if (params_.parallel_modes == ParallelModes::kAlways) return {Mode::kSom, Mode::kEam};
   return {Mode::kSom};
 }
 
@@ -209,6 +218,12 @@ void Arbiter::evaluate(int64_t now) {
   }
   const Trigger trigger = nextTrigger(now);
   if (trigger == Trigger::kNone) return;
+  const bool braking = committed_mode_ == Mode::kStop && odometry_.velocity.norm() > 0.1;
+  // (A collision on the stop itself is not throttled: only an evasive plan can help then.)
+  if (braking && trigger == Trigger::kRetry &&
+      (now - last_round_utime_) * kUs < params_.stop_retry_period_s) {
+    return;
+  }
   const std::vector<Mode> modes = chooseModes(trigger);
   if (modes.empty()) return;
   if (trigger == Trigger::kRetry && (tried_modes_ & modeBit(modes.front()))) {
@@ -219,6 +234,7 @@ void Arbiter::evaluate(int64_t now) {
 
 void Arbiter::startPlanning(Trigger trigger, const std::vector<Mode>& modes, int64_t now) {
   if (trigger != Trigger::kRetry) tried_modes_ = 0;  // a new episode of attempts
+  last_round_utime_ = now;
   Pending p;
   p.trigger = trigger;
   p.start_utime = now + static_cast<int64_t>(params_.replan_lead_s * 1e6);

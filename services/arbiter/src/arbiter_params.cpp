@@ -2,6 +2,25 @@
 
 namespace mmh::arbiter {
 
+ParallelModes parseParallelModes(const std::string& name) {
+  if (name == "none") return ParallelModes::kNone;
+  if (name == "collision") return ParallelModes::kCollision;
+  if (name == "always") return ParallelModes::kAlways;
+  throw ConfigError("unknown value '" + name + "' (expected none, collision or always)");
+}
+
+const char* toString(ParallelModes mode) {
+  switch (mode) {
+    case ParallelModes::kNone:
+      return "none";
+    case ParallelModes::kCollision:
+      return "collision";
+    case ParallelModes::kAlways:
+      return "always";
+  }
+  return "?";
+}
+
 Policy parsePolicy(const std::string& name) {
   if (name == "mmh") return Policy::kMmh;
   if (name == "mmh-no-lazy") return Policy::kMmhNoLazy;
@@ -47,8 +66,14 @@ ArbiterParams loadArbiterParams(const Config& config) {
   }
   p.goal_tolerance_m = config.getDouble("arbiter.goal_tolerance_m", 0.05, 5.0);
   p.fixed_replan_distance_m = config.getDouble("arbiter.fixed_replan_distance_m", 0.1, 50.0);
-  p.parallel_modes = config.getBool("arbiter.parallel_modes");
+  try {
+    p.parallel_modes = parseParallelModes(config.getString("arbiter.parallel_modes"));
+  } catch (const ConfigError& e) {
+    throw ConfigError(config.source() + ": key 'arbiter.parallel_modes': " + e.what());
+  }
   p.stale_map_s = config.getDouble("arbiter.stale_map_s", 0.05, 60.0);
+  p.stop_retry_period_s = config.getDouble("arbiter.stop_retry_period_s", 0.0, 10.0);
+  p.emergency_horizon_s = config.getDouble("arbiter.emergency_horizon_s", 0.0, 60.0);
   p.inflation_m = config.getDouble("map.inflation_m", 0.0, 5.0);
   p.check_inflation_m = config.getDouble("arbiter.check_inflation_m", 0.0, 5.0);
   if (p.check_inflation_m > p.inflation_m) {

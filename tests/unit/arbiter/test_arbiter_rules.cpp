@@ -178,6 +178,7 @@ TEST_F(ArbiterRules, NoHalfwayReplanWhenTheTrajectoryEndsAtTheGoal) {
 }
 
 TEST_F(ArbiterRules, NewObstacleOnTheCommittedTrajectoryAsksEamWithTheReference) {
+  params_.emergency_horizon_s = 30.0;  // every collision is an emergency
   auto a = started(Policy::kMmh);
   auto r = a->takeRequests().at(0);
   a->onAnswer(okAnswer(r), at(0.001));
@@ -193,6 +194,23 @@ TEST_F(ArbiterRules, NewObstacleOnTheCommittedTrajectoryAsksEamWithTheReference)
   // The reference is the rest of the committed trajectory from the new start time.
   EXPECT_LT((requests[0].reference.position(0) - requests[0].start.position).norm(), 1e-9);
   EXPECT_TRUE(requests[0].target.isApprox(a->committed().position(a->committed().duration())));
+}
+
+TEST_F(ArbiterRules, CollisionBeyondTheEmergencyHorizonAsksTheAwarenessMode) {
+  params_.emergency_horizon_s = 0.5;
+  auto a = started(Policy::kMmh, /*safe=*/false);
+  auto r = a->takeRequests().at(0);
+  ASSERT_EQ(r.mode, Mode::kSom);
+  a->onAnswer(okAnswer(r), at(0.001));
+  ASSERT_TRUE(a->takeCommit());
+  fly(*a, 0.01, 1.0);
+  putPillar(9.0, 0.0, 0.4);  // seconds ahead of the vehicle
+  a->onMapUpdated(grid_, ++map_seq_, at(1.0), at(1.0));
+  auto requests = a->takeRequests();
+  ASSERT_EQ(requests.size(), 1u);
+  EXPECT_EQ(requests[0].trigger, Trigger::kCollision);
+  EXPECT_EQ(requests[0].mode, Mode::kSom);
+  EXPECT_TRUE(requests[0].reference.empty());
 }
 
 TEST_F(ArbiterRules, FarCollisionsAreLeftToTheHalfwayReplan) {

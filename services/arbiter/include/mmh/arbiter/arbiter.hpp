@@ -132,7 +132,7 @@ class Arbiter {
   void commitStop(int64_t now, const std::string& why, Trigger trigger);
   bool collisionAhead(int64_t now) const;
   // A collision ahead that the halfway replan would not reach in time (see ArbiterParams).
-  bool collisionThreat(int64_t now) const;
+  bool collisionThreat(int64_t now, double* eta_s = nullptr) const;
   KinematicState stateAt(int64_t utime) const;
   void pushDecision(DecisionOut decision);
 
@@ -162,10 +162,12 @@ class Arbiter {
   // Replanning state.
   std::optional<Pending> pending_;
   bool collision_detected_ = false;
+  double collision_eta_s_ = 0.0;  // time from detection until the vehicle would reach it
   bool last_failed_ = false;
   uint8_t tried_modes_ = 0;  // modes asked since the last commit
   int64_t map_seq_at_failure_ = 0;
   bool stopped_for_stale_map_ = false;
+  int64_t last_round_utime_ = 0;  // when the last planning round started
   int64_t next_request_id_ = 1;
   int64_t next_decision_seq_ = 1;
   // Outputs.

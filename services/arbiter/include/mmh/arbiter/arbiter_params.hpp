@@ -17,6 +17,16 @@ enum class Policy {
   kSom,             // SOM alone, same fixed replanning
 };
 
+// When several modes are asked at once (the best verified answer is committed).
+enum class ParallelModes {
+  kNone,       // one mode at a time: SOM, EAM only once SOM failed
+  kCollision,  // EAM and SOM together on a collision; otherwise one at a time
+  kAlways,     // SOM and EAM together wherever S is false, and on a collision
+};
+
+ParallelModes parseParallelModes(const std::string& name);  // throws ConfigError when unknown
+const char* toString(ParallelModes mode);
+
 Policy parsePolicy(const std::string& name);  // throws ConfigError on an unknown name
 const char* toString(Policy policy);
 
@@ -29,7 +39,7 @@ struct ArbiterParams {
   double answer_deadline_s = 0.04;  // answers later than this after the request are ignored
   double goal_tolerance_m = 0.3;
   double fixed_replan_distance_m = 1.5;  // baselines: replan after this much progress
-  bool parallel_modes = false;           // ask SOM and EAM together when awareness says unsafe
+  ParallelModes parallel_modes = ParallelModes::kNone;
   double inflation_m = 0.3;              // the planners' map inflation (local target clearance)
   double check_inflation_m = 0.25;       // inflation of the arbiter's own collision checks; a bit
                                          // below the planners' so discretisation cannot make a
@@ -39,6 +49,12 @@ struct ArbiterParams {
   // left to the halfway replan, which comes first; nearer ones trigger EAM at once.
   bool defer_far_collisions = true;
   double collision_margin_s = 1.5;
+  // While a stopping trajectory brakes, plans from its hard-braking states rarely fit the limits:
+  // retries then wait this long between rounds instead of running on every map.
+  double stop_retry_period_s = 0.3;
+  // A collision the vehicle reaches later than this is not an emergency: the replan then asks the
+  // mode awareness picks (SOM/FPM) rather than EAM, which would slow down around it.
+  double emergency_horizon_s = 2.0;
   double stale_map_s = 1.0;          // LOCAL_MAP older than this (message clock) is stale
   double narrow_probe_dist_m = 0.8;  // for moving a local target out of obstacles
   Eigen::Vector3d geofence_min_m = Eigen::Vector3d(-1e3, -1e3, 0.0);
