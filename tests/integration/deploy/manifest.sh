@@ -27,11 +27,12 @@ sed -n 4p "$out/start.txt" | grep -q "sim.sh start .* -- --world forest" || fail
 sed -n 4p "$out/stop.txt" | grep -q "arbiter.sh stop.*awareness.sh stop" || fail "planners not stopped in reverse"
 "$deploy" "$root/deploy/hosts/three-hosts.yaml" status --dry-run --host planner > "$out/one.txt"
 [ "$(wc -l < "$out/one.txt")" -eq 1 ] && grep -q "^planner (ssh" "$out/one.txt" || fail "--host planner"
-"$deploy" "$root/deploy/hosts/single.yaml" start --dry-run | grep -q "^local (local): cd $root" ||
+"$deploy" "$root/deploy/hosts/single.yaml" start --dry-run > "$out/single.txt"
+grep -q "^local (local): cd $root" "$out/single.txt" ||
   fail "single.yaml does not run locally in this checkout"
 # --netns: every host on this machine inside DIR/HOST.
-"$deploy" "$root/deploy/hosts/three-hosts.yaml" status --dry-run --netns /run/netns |
-  grep -q "^vehicle (netns /run/netns/vehicle)" || fail "--netns not applied"
+"$deploy" "$root/deploy/hosts/three-hosts.yaml" status --dry-run --netns /run/netns > "$out/ns.txt"
+grep -q "^vehicle (netns /run/netns/vehicle)" "$out/ns.txt" || fail "--netns not applied"
 
 expect_error() {  # expect_error MESSAGE-REGEX deploy.sh-args...
   local pattern=$1 status=0
