@@ -2,7 +2,8 @@
 # deploy/deploy.sh without starting anything: the example manifests parse, --dry-run shows each
 # host's commands (ssh targets, phases: logger, planners, sim, goal; stop in reverse), --host
 # selects one host, bad manifests are refused with exit code 2 and the reason; the systemd
-# template installs for this checkout and passes systemd-analyze verify.
+# template installs for this checkout and passes systemd-analyze verify, and what it runs is the
+# service itself in the foreground, stopping cleanly on SIGTERM.
 set -euo pipefail
 build=$1
 root=$(cd "$(dirname "$0")/../../.." && pwd)
@@ -66,4 +67,16 @@ if command -v systemd-analyze > /dev/null; then
   # Problems in the unit are reported as FILE:LINE (others are about this machine).
   grep -q "mmh@mapping.service:[0-9]" "$out/verify.txt" && fail "systemd-analyze verify: the unit"
 fi
+# What the unit runs (`%i.sh run`): the service itself in the foreground (same pid, so systemd
+# supervises it), stopping cleanly on SIGTERM (memq:// here: no network needed).
+LCM_DEFAULT_URL=memq:// MMH_BIN_DIR=$build/bin "$root/deploy/launch/mapping.sh" run \
+  > "$out/run.log" 2>&1 &
+pid=$!
+sleep 1
+[ "$(readlink "/proc/$pid/exe")" = "$(readlink -f "$build/bin/mmh-mapping")" ] ||
+  fail "'mapping.sh run' is not the service itself: $(readlink "/proc/$pid/exe")"
+kill -TERM $pid
+status=0
+wait $pid || status=$?
+[ $status -eq 0 ] || { cat "$out/run.log"; fail "'mapping.sh run' exit code $status on SIGTERM"; }
 echo PASS
