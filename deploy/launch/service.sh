@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Start, stop or supervise one MMH service as a background process with a log file and a pid
 # file. The per-service scripts (mapping.sh, som.sh, ...) call this with the executable's name.
+# NAME mmh-logger is lcm-logger (deploy/record.sh) recording the prefix's channels (every channel
+# without a prefix) to $MMH_RECORD_FILE (default RUN_DIR/<prefix>flight.lcm, then .00, .01, ...).
 #
 #   service.sh NAME start|stop|restart|status|run [options] [-- extra service arguments]
 #
@@ -42,7 +44,13 @@ tag=${prefix}${name}
 pid_file=$run_dir/$tag.pid
 log_file=$run_dir/$tag.log
 stop_file=$run_dir/$tag.stopping
-args=(--config "$config" --prefix "$prefix")
+if [ "$name" = mmh-logger ]; then
+  exe=$root/deploy/record.sh
+  args=("${MMH_RECORD_FILE:-$run_dir/${prefix}flight.lcm}" --quiet)
+  [ -n "$prefix" ] && args+=(--channel "^${prefix}.*")
+else
+  args=(--config "$config" --prefix "$prefix")
+fi
 [ -n "$url" ] && args+=(--lcm-url "$url")
 args+=("${extra[@]}")
 

@@ -11,6 +11,7 @@
 #include <set>
 
 #include "mmh/arbiter_status_t.hpp"
+#include "mmh/common/decision_names.hpp"
 #include "mmh/common/local_map_codec.hpp"
 #include "mmh/goal_t.hpp"
 #include "mmh/local_map_t.hpp"
@@ -51,40 +52,6 @@ bool decode(const lcm::LogEvent& e, Msg& msg) {
   } catch (const std::exception&) {
     return false;
   }
-}
-
-const char* modeName(int mode) {
-  switch (mode) {
-    case 0:
-      return "-";
-    case plan_request_t::MODE_FPM:
-      return "FPM";
-    case plan_request_t::MODE_SOM:
-      return "SOM";
-    case plan_request_t::MODE_EAM:
-      return "EAM";
-    case plan_request_t::MODE_STOP:
-      return "STOP";
-  }
-  return "?";
-}
-
-const char* outcomeName(int outcome) {
-  switch (outcome) {
-    case arbiter_status_t::OUTCOME_PENDING:
-      return "pending";
-    case arbiter_status_t::OUTCOME_COMMITTED:
-      return "committed";
-    case arbiter_status_t::OUTCOME_FAILED:
-      return "failed";
-    case arbiter_status_t::OUTCOME_STOPPING:
-      return "stopping";
-    case arbiter_status_t::OUTCOME_REACHED:
-      return "reached";
-    case arbiter_status_t::OUTCOME_REJECTED:
-      return "rejected";
-  }
-  return "?";
 }
 
 }  // namespace
@@ -268,16 +235,13 @@ void printSummary(const LogSummary& s, std::ostream& out) {
 }
 
 void printDecisions(const LogSummary& s, std::ostream& out) {
-  static const char* triggers[] = {"none", "initial", "halfway", "collision",
-                                   "goal", "retry",   "fixed",   "deadline"};
   out << std::fixed << std::setprecision(2);
   for (const auto& [prefix, v] : s.vehicles) {
     for (const DecisionLine& d : v.decisions) {
       out << prefix << std::setw(8) << d.t_s << " s  (" << std::setw(6) << d.x << ", "
           << std::setw(6) << d.y << ")  S=" << (d.safe ? "1" : "0") << "  "
-          << (d.trigger >= 0 && d.trigger <= 7 ? triggers[d.trigger] : "?") << " -> "
-          << outcomeName(d.outcome) << " " << modeName(d.committed_mode) << "  " << d.detail
-          << "\n";
+          << triggerName(d.trigger) << " -> " << outcomeName(d.outcome) << " "
+          << modeName(d.committed_mode) << "  " << d.detail << "\n";
     }
   }
 }

@@ -4,19 +4,15 @@
 
 #include <chrono>
 
-#include "arbiter_node.hpp"
-#include "awareness_node.hpp"
-#include "eam_node.hpp"
-#include "fpm_node.hpp"
-#include "mapping_node.hpp"
-#include "mmh/arbiter/arbiter_params.hpp"
+#include "mmh/arbiter_status_t.hpp"
 #include "mmh/common/lcm_runtime.hpp"
 #include "mmh/common/msg_convert.hpp"
 #include "mmh/goal_t.hpp"
+#include "mmh/plan_request_t.hpp"
 #include "mmh/plan_result_t.hpp"
 #include "mmh/trajectory_t.hpp"
+#include "planner_host.hpp"
 #include "sim_node.hpp"
-#include "som_node.hpp"
 
 namespace mmh {
 
@@ -47,29 +43,14 @@ class Recorder {
 
 struct Stack::Impl {
   StackOptions options;
-  std::unique_ptr<lcm::LCM> lcm;
-  std::vector<std::unique_ptr<ServiceContext>> contexts;
+  std::unique_ptr<PlannerHost> host;
   std::unique_ptr<SimNode> sim;
-  std::unique_ptr<MappingNode> mapping;
-  std::unique_ptr<AwarenessNode> awareness;
-  std::unique_ptr<FpmNode> fpm;
-  std::unique_ptr<SomNode> som;
-  std::unique_ptr<EamNode> eam;
-  std::unique_ptr<ArbiterNode> arbiter;
   std::unique_ptr<Recorder> recorder;
   ServiceContext* observer = nullptr;
   FlightRecord record;
   int current_mode = 0;
 
-  ServiceContext& context(const std::string& service) {
-    contexts.push_back(std::make_unique<ServiceContext>(*lcm, service, options.prefix));
-    return *contexts.back();
-  }
-
-  void drain() {
-    while (lcm->handleTimeout(0) > 0) {
-    }
-  }
+  void drain() { host->drain(); }
 
   // Observer handlers: what the benchmark needs to know about planning.
   void onPlanResult(const plan_result_t& msg) {
@@ -95,32 +76,22 @@ struct Stack::Impl {
 Stack::Stack(const StackOptions& options) : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
   s.options = options;
-  s.lcm = openLcm("memq://");
-  const Config& config = options.config;
+  PlannerHostOptions host;
+  host.config = options.config;
+  host.prefix = options.prefix;
+  host.policy = options.policy;
+  host.map_loss = options.map_loss;
+  host.loss_seed = options.loss_seed;
   // Planners first, simulator last: when the simulator publishes, everyone already listens.
-  s.mapping = std::make_unique<MappingNode>(s.context("mmh-mapping"), config);
-  s.awareness = std::make_unique<AwarenessNode>(s.context("mmh-awareness"), config);
-  s.fpm = std::make_unique<FpmNode>(s.context("mmh-fpm"), config);
-  s.som = std::make_unique<SomNode>(s.context("mmh-som"), config);
-  s.eam = std::make_unique<EamNode>(s.context("mmh-eam"), config);
-  arbiter::ArbiterParams params = arbiter::loadArbiterParams(config);
-  if (!options.policy.empty()) params.policy = arbiter::parsePolicy(options.policy);
-  s.arbiter = std::make_unique<ArbiterNode>(s.context("mmh-arbiter"), params);
-  s.sim = std::make_unique<SimNode>(s.context("mmh-sim"), config, options.sim);
-  if (options.map_loss > 0.0) {
-    uint64_t seed = options.loss_seed;
-    for (auto& ctx : s.contexts) {
-      if (ctx->service() != "mmh-sim" && ctx->service() != "mmh-mapping")
-        ctx->setIncomingLoss(channels::kLocalMap, options.map_loss, seed++);
-    }
-  }
-  s.observer = &s.context("mmh-stack");
+  s.host = std::make_unique<PlannerHost>(host);
+  s.sim = std::make_unique<SimNode>(s.host->addContext("mmh-sim"), options.config, options.sim);
+  s.observer = &s.host->addContext("mmh-stack");
   s.observer->subscribe(channels::kPlanResult, &Impl::onPlanResult, &s);
   s.observer->subscribe(channels::kTrajectory, &Impl::onTrajectory, &s);
   s.observer->subscribe(channels::kArbiterStatus, &Impl::onStatus, &s);
   if (!options.log_path.empty()) {
     s.recorder = std::make_unique<Recorder>(options.log_path, &s.sim->simulator());
-    s.lcm->subscribe(".*", &Recorder::onRaw, s.recorder.get());
+    s.host->lcm().subscribe(".*", &Recorder::onRaw, s.recorder.get());
   }
 }
 
@@ -143,7 +114,7 @@ FlightRecord Stack::fly() {
     s.sim->step();
     s.drain();
     const int64_t now = s.sim->nowUtime();
-    for (auto& ctx : s.contexts) ctx->maybePublishHeartbeat(now);
+    s.host->publishHeartbeats(now);
     s.drain();
     if (now >= next_sample) {
       next_sample += 100'000;

@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "mmh/common/decision_names.hpp"
+
 namespace mmh {
 namespace {
 
@@ -18,23 +20,6 @@ const char* stateName(int8_t s) {
       return "STOPPING";
   }
   return "?";
-}
-
-const char* modeName(int m) {
-  static const char* names[] = {"-", "FPM", "SOM", "EAM", "STOP"};
-  return m >= 0 && m <= 4 ? names[m] : "?";
-}
-
-const char* triggerName(int t) {
-  static const char* names[] = {"none", "initial", "halfway", "collision",
-                                "goal", "retry",   "fixed",   "deadline"};
-  return t >= 0 && t <= 7 ? names[t] : "?";
-}
-
-const char* outcomeName(int o) {
-  static const char* names[] = {"pending",  "committed", "failed",
-                                "stopping", "reached",   "rejected"};
-  return o >= 0 && o <= 5 ? names[o] : "?";
 }
 
 }  // namespace
