@@ -94,4 +94,22 @@ TEST(CheckedDecode, WrongTypeAndInvalidContent) {
   EXPECT_FALSE(why.empty());
 }
 
+// A NUL inside an LCM string encodes shorter than getEncodedSize() says: refused, as are control
+// characters in identifiers.
+TEST(CheckedDecode, StringsWithNulOrControlCharactersAreInvalid) {
+  auto m = smallCloud();
+  m.header.source = std::string("mmh-sim\0xx", 10);
+  std::string why;
+  EXPECT_FALSE(mmh::validate(m.header, &why));
+  m.header.source = "mmh-sim\x1b[2J";
+  EXPECT_FALSE(mmh::validate(m.header, &why));
+  mmh::heartbeat_t hb{};
+  hb.service = "mmh-fpm";
+  hb.host = "vm";
+  hb.state_detail = std::string("ok\0", 3);
+  EXPECT_FALSE(mmh::validate(hb, &why));
+  hb.state_detail = "ok";
+  EXPECT_TRUE(mmh::validate(hb, &why)) << why;
+}
+
 }  // namespace
