@@ -2,7 +2,9 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include <algorithm>
 #include <chrono>
+#include <stdexcept>
 
 #include "arbiter_node.hpp"
 #include "awareness_node.hpp"
@@ -45,9 +47,9 @@ class Recorder {
 
 }  // namespace
 
-struct Stack::Impl {
-  StackOptions options;
-  std::unique_ptr<lcm::LCM> lcm;
+// The services of one vehicle (one channel prefix) and the observer that records its flight.
+struct Vehicle {
+  StackOptions options;  // with this vehicle's prefix and seeds
   std::vector<std::unique_ptr<ServiceContext>> contexts;
   std::unique_ptr<SimNode> sim;
   std::unique_ptr<MappingNode> mapping;
@@ -56,19 +58,74 @@ struct Stack::Impl {
   std::unique_ptr<SomNode> som;
   std::unique_ptr<EamNode> eam;
   std::unique_ptr<ArbiterNode> arbiter;
-  std::unique_ptr<Recorder> recorder;
   ServiceContext* observer = nullptr;
   FlightRecord record;
   int current_mode = 0;
+  int64_t t0 = 0, next_sample = 0;
+  bool done = false;
 
-  ServiceContext& context(const std::string& service) {
-    contexts.push_back(std::make_unique<ServiceContext>(*lcm, service, options.prefix));
+  Vehicle(lcm::LCM& lcm, const StackOptions& opts) : options(opts) {
+    const Config& config = options.config;
+    // Planners first, simulator last: when the simulator publishes, everyone already listens.
+    mapping = std::make_unique<MappingNode>(context(lcm, "mmh-mapping"), config);
+    awareness = std::make_unique<AwarenessNode>(context(lcm, "mmh-awareness"), config);
+    fpm = std::make_unique<FpmNode>(context(lcm, "mmh-fpm"), config);
+    som = std::make_unique<SomNode>(context(lcm, "mmh-som"), config);
+    eam = std::make_unique<EamNode>(context(lcm, "mmh-eam"), config);
+    arbiter::ArbiterParams params = arbiter::loadArbiterParams(config);
+    if (!options.policy.empty()) params.policy = arbiter::parsePolicy(options.policy);
+    arbiter = std::make_unique<ArbiterNode>(context(lcm, "mmh-arbiter"), params);
+    sim = std::make_unique<SimNode>(context(lcm, "mmh-sim"), config, options.sim);
+    if (options.map_loss > 0.0) {
+      uint64_t seed = options.loss_seed;
+      for (auto& ctx : contexts) {
+        if (ctx->service() != "mmh-sim" && ctx->service() != "mmh-mapping")
+          ctx->setIncomingLoss(channels::kLocalMap, options.map_loss, seed++);
+      }
+    }
+    observer = &context(lcm, "mmh-stack");
+    observer->subscribe(channels::kPlanResult, &Vehicle::onPlanResult, this);
+    observer->subscribe(channels::kTrajectory, &Vehicle::onTrajectory, this);
+    observer->subscribe(channels::kArbiterStatus, &Vehicle::onStatus, this);
+  }
+
+  ServiceContext& context(lcm::LCM& lcm, const std::string& service) {
+    contexts.push_back(std::make_unique<ServiceContext>(lcm, service, options.prefix));
     return *contexts.back();
   }
 
-  void drain() {
-    while (lcm->handleTimeout(0) > 0) {
+  void publishGoal() {
+    goal_t goal{};
+    goal.header.utime = sim->nowUtime();
+    goal.goal_id = 1;
+    fromVec3(options.sim.goal, goal.position);
+    observer->clock().observe(goal.header.utime);
+    observer->publish(channels::kGoal, goal);
+  }
+
+  // After a simulation step: heartbeats and the 10 Hz path sample.
+  void afterStep() {
+    const int64_t now = sim->nowUtime();
+    for (auto& ctx : contexts) ctx->maybePublishHeartbeat(now);
+    if (now >= next_sample) {
+      next_sample += 100'000;
+      const auto& v = sim->simulator().vehicle();
+      PathSample p;
+      p.t = (now - t0) * 1e-6;
+      p.position = v.state().position;
+      p.speed = v.state().velocity.norm();
+      p.mode = current_mode;
+      record.path.push_back(p);
     }
+  }
+
+  void finish(double wall_time_s) {
+    record.metrics = sim->metrics();
+    record.sim_time_s = (sim->nowUtime() - t0) * 1e-6;
+    record.end_reason =
+        record.metrics.collided ? "collided" : (record.metrics.reached ? "reached" : "timeout");
+    record.wall_time_s = wall_time_s;
+    done = true;
   }
 
   // Observer handlers: what the benchmark needs to know about planning.
@@ -92,78 +149,86 @@ struct Stack::Impl {
   }
 };
 
+struct Stack::Impl {
+  StackOptions options;
+  std::unique_ptr<lcm::LCM> lcm;
+  std::vector<std::unique_ptr<Vehicle>> vehicles;
+  std::unique_ptr<Recorder> recorder;
+
+  void drain() {
+    while (lcm->handleTimeout(0) > 0) {
+    }
+  }
+};
+
 Stack::Stack(const StackOptions& options) : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
   s.options = options;
+  if (options.vehicles < 1) throw std::runtime_error("mmh-stack: at least one vehicle");
   s.lcm = openLcm("memq://");
-  const Config& config = options.config;
-  // Planners first, simulator last: when the simulator publishes, everyone already listens.
-  s.mapping = std::make_unique<MappingNode>(s.context("mmh-mapping"), config);
-  s.awareness = std::make_unique<AwarenessNode>(s.context("mmh-awareness"), config);
-  s.fpm = std::make_unique<FpmNode>(s.context("mmh-fpm"), config);
-  s.som = std::make_unique<SomNode>(s.context("mmh-som"), config);
-  s.eam = std::make_unique<EamNode>(s.context("mmh-eam"), config);
-  arbiter::ArbiterParams params = arbiter::loadArbiterParams(config);
-  if (!options.policy.empty()) params.policy = arbiter::parsePolicy(options.policy);
-  s.arbiter = std::make_unique<ArbiterNode>(s.context("mmh-arbiter"), params);
-  s.sim = std::make_unique<SimNode>(s.context("mmh-sim"), config, options.sim);
-  if (options.map_loss > 0.0) {
-    uint64_t seed = options.loss_seed;
-    for (auto& ctx : s.contexts) {
-      if (ctx->service() != "mmh-sim" && ctx->service() != "mmh-mapping")
-        ctx->setIncomingLoss(channels::kLocalMap, options.map_loss, seed++);
-    }
+  for (int i = 0; i < options.vehicles; ++i) {
+    StackOptions v = options;
+    v.prefix = vehiclePrefix(i);
+    v.sim.seed = options.sim.seed + i;
+    v.sim.noise_seed = options.sim.noise_seed + i;
+    s.vehicles.push_back(std::make_unique<Vehicle>(*s.lcm, v));
   }
-  s.observer = &s.context("mmh-stack");
-  s.observer->subscribe(channels::kPlanResult, &Impl::onPlanResult, &s);
-  s.observer->subscribe(channels::kTrajectory, &Impl::onTrajectory, &s);
-  s.observer->subscribe(channels::kArbiterStatus, &Impl::onStatus, &s);
   if (!options.log_path.empty()) {
-    s.recorder = std::make_unique<Recorder>(options.log_path, &s.sim->simulator());
+    s.recorder = std::make_unique<Recorder>(options.log_path, &s.vehicles[0]->sim->simulator());
     s.lcm->subscribe(".*", &Recorder::onRaw, s.recorder.get());
   }
 }
 
 Stack::~Stack() = default;
 
+std::string Stack::vehiclePrefix(int i) const {
+  const StackOptions& o = impl_->options;
+  return o.vehicles == 1 ? o.prefix : o.prefix + "UAV" + std::to_string(i + 1) + "_";
+}
+
 FlightRecord Stack::fly() {
+  return flyAll().front();
+}
+
+std::vector<FlightRecord> Stack::flyAll(const std::function<void(double)>& on_second) {
   Impl& s = *impl_;
   const auto wall_start = std::chrono::steady_clock::now();
-  goal_t goal{};
-  goal.header.utime = s.sim->nowUtime();
-  goal.goal_id = 1;
-  fromVec3(s.options.sim.goal, goal.position);
-  s.observer->clock().observe(goal.header.utime);
-  s.observer->publish(channels::kGoal, goal);
+  auto wall = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  };
+  for (auto& v : s.vehicles) v->publishGoal();
   s.drain();
-  const int64_t t0 = s.sim->nowUtime();
+  for (auto& v : s.vehicles) v->t0 = v->next_sample = v->sim->nowUtime();
+  const int64_t t0 = s.vehicles[0]->t0;
   const int64_t limit = t0 + static_cast<int64_t>(s.options.timeout_s * 1e6);
-  int64_t next_sample = t0;
-  while (true) {
-    s.sim->step();
-    s.drain();
-    const int64_t now = s.sim->nowUtime();
-    for (auto& ctx : s.contexts) ctx->maybePublishHeartbeat(now);
-    s.drain();
-    if (now >= next_sample) {
-      next_sample += 100'000;
-      const auto& v = s.sim->simulator().vehicle();
-      PathSample p;
-      p.t = (now - t0) * 1e-6;
-      p.position = v.state().position;
-      p.speed = v.state().velocity.norm();
-      p.mode = s.current_mode;
-      s.record.path.push_back(p);
+  int64_t next_second = t0 + 1'000'000;
+  size_t running = s.vehicles.size();
+  while (running > 0) {
+    // Every simulator steps, then every message is delivered: one lock-step for all vehicles.
+    for (auto& v : s.vehicles) {
+      if (!v->done) v->sim->step();
     }
-    if (s.sim->finished() || now >= limit) break;
+    s.drain();
+    for (auto& v : s.vehicles) {
+      if (!v->done) v->afterStep();
+    }
+    s.drain();
+    for (auto& v : s.vehicles) {
+      if (!v->done && (v->sim->finished() || v->sim->nowUtime() >= limit)) {
+        v->finish(wall());
+        --running;
+      }
+    }
+    int64_t now = t0;  // the simulators step together; finished ones stay behind
+    for (auto& v : s.vehicles) now = std::max(now, v->sim->nowUtime());
+    if (on_second && now >= next_second) {
+      next_second += 1'000'000;
+      on_second((now - t0) * 1e-6);
+    }
   }
-  s.record.metrics = s.sim->metrics();
-  s.record.sim_time_s = (s.sim->nowUtime() - t0) * 1e-6;
-  s.record.end_reason =
-      s.record.metrics.collided ? "collided" : (s.record.metrics.reached ? "reached" : "timeout");
-  s.record.wall_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  return s.record;
+  std::vector<FlightRecord> out;
+  for (auto& v : s.vehicles) out.push_back(v->record);
+  return out;
 }
 
 }  // namespace mmh
