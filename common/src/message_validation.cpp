@@ -19,6 +19,22 @@ bool finiteVec(const double* v, int n, double bound = kMaxAbsCoordinate_m) {
   return true;
 }
 
+// LCM strings end at the first NUL when encoded but not when sized: a string holding one would be
+// re-published shorter than its size, with uninitialised bytes after it. Identifiers (service
+// names, hosts, counter names) must also be free of control characters, which would forge lines
+// or terminal escapes in logs and in mmh-top.
+bool validText(const std::string& s, size_t max_length) {
+  return s.size() <= max_length && s.find('\0') == std::string::npos;
+}
+
+bool validIdentifier(const std::string& s) {
+  if (s.size() > 256) return false;
+  for (char c : s) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return false;
+  }
+  return true;
+}
+
 bool validQuaternion(const double* q) {
   if (!finiteVec(q, 4, 2.0)) return false;
   const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
@@ -31,6 +47,7 @@ bool validate(const header_t& msg, std::string* why) {
   if (msg.utime < 0) return fail(why, "header.utime is negative");
   if (msg.seq < 0) return fail(why, "header.seq is negative");
   if (msg.source.size() > 256) return fail(why, "header.source is too long");
+  if (!validIdentifier(msg.source)) return fail(why, "header.source has control characters");
   return true;
 }
 
@@ -126,6 +143,7 @@ bool validate(const plan_result_t& msg, std::string* why) {
     return fail(why, "successful result without a trajectory");
   const double costs[4] = {msg.cost_total, msg.cost_control, msg.cost_time, msg.cost_penalty};
   if (!finiteVec(costs, 4, 1e300)) return fail(why, "cost is not finite");
+  if (!validText(msg.detail, kMaxTextLength)) return fail(why, "detail is too long or has a NUL");
   return validate(msg.trajectory, why);
 }
 
@@ -133,6 +151,7 @@ bool validate(const arbiter_status_t& msg, std::string* why) {
   if (!validate(msg.header, why)) return false;
   if (!finiteVec(msg.position, 3) || !finiteVec(msg.local_target, 3))
     return fail(why, "non-finite coordinates");
+  if (!validText(msg.detail, kMaxTextLength)) return fail(why, "detail is too long or has a NUL");
   return true;
 }
 
@@ -142,6 +161,14 @@ bool validate(const heartbeat_t& msg, std::string* why) {
       static_cast<size_t>(msg.num_counters) != msg.counter_names.size() ||
       msg.counter_names.size() != msg.counter_values.size())
     return fail(why, "num_counters disagrees with the data");
+  if (!validIdentifier(msg.service) || !validIdentifier(msg.host))
+    return fail(why, "service or host is too long or has control characters");
+  if (!validText(msg.state_detail, kMaxTextLength))
+    return fail(why, "state_detail is too long or has a NUL");
+  for (const std::string& name : msg.counter_names) {
+    if (!validIdentifier(name))
+      return fail(why, "counter name is too long or has control characters");
+  }
   return true;
 }
 

@@ -2,6 +2,8 @@
 // simulator in lock-step (faster than real time; the same seed gives the same flight).
 #include <iostream>
 
+#include "fleet_report.hpp"
+
 #include "mmh/common/cli.hpp"
 #include "mmh/common/log.hpp"
 #include "mmh/common/node_options.hpp"
@@ -13,6 +15,7 @@ int main(int argc, char** argv) {
   std::string policy, log_path;
   double timeout_s = 120.0, map_loss = 0.0;
   bool json = false;
+  int vehicles = 1;
   int seed = static_cast<int>(sim.seed), noise_seed = static_cast<int>(sim.noise_seed);
   mmh::ArgParser parser("mmh-stack",
                         "Flies one mission with mapping, awareness, FPM, SOM, EAM, arbiter and the "
@@ -36,6 +39,8 @@ int main(int argc, char** argv) {
   parser.addDouble("--map-loss", &map_loss,
                    "test switch: share of LOCAL_MAP messages planners lose");
   parser.addFlag("--json", &json, "print the result as one JSON object");
+  parser.addInt("--vehicles", &vehicles,
+                "vehicles in the one simulation (prefixes <prefix>UAV1_ ..., seeds +0, +1, ...)");
   int code = 0;
   if (!parser.parse(argc, argv, &code)) return code;
   sim.seed = seed;
@@ -50,7 +55,9 @@ int main(int argc, char** argv) {
     options.timeout_s = timeout_s;
     options.log_path = log_path;
     options.map_loss = map_loss;
+    options.vehicles = vehicles;
     mmh::Stack stack(options);
+    if (vehicles > 1) return reportFleet(stack, json);
     const mmh::FlightRecord r = stack.fly();
     const auto& m = r.metrics;
     double cost_sum = 0;

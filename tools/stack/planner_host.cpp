@@ -10,8 +10,12 @@
 
 namespace mmh {
 
-PlannerHost::PlannerHost(const PlannerHostOptions& options) : options_(options) {
-  lcm_ = openLcm("memq://");
+PlannerHost::PlannerHost(const PlannerHostOptions& options, lcm::LCM* bus) : options_(options) {
+  if (bus == nullptr) {
+    own_lcm_ = openLcm("memq://");
+    bus = own_lcm_.get();
+  }
+  bus_ = bus;
   const Config& config = options.config;
   mapping_ = std::make_unique<MappingNode>(addContext("mmh-mapping"), config);
   awareness_ = std::make_unique<AwarenessNode>(addContext("mmh-awareness"), config);
@@ -33,12 +37,12 @@ PlannerHost::PlannerHost(const PlannerHostOptions& options) : options_(options) 
 PlannerHost::~PlannerHost() = default;
 
 ServiceContext& PlannerHost::addContext(const std::string& service) {
-  contexts_.push_back(std::make_unique<ServiceContext>(*lcm_, service, options_.prefix));
+  contexts_.push_back(std::make_unique<ServiceContext>(*bus_, service, options_.prefix));
   return *contexts_.back();
 }
 
 void PlannerHost::drain() {
-  while (lcm_->handleTimeout(0) > 0) {
+  while (bus_->handleTimeout(0) > 0) {
   }
 }
 

@@ -32,13 +32,14 @@ struct PlannerHostOptions {
 
 class PlannerHost {
  public:
-  // Opens memq:// and starts the six planner services on it (throws ConfigError, LcmError).
-  explicit PlannerHost(const PlannerHostOptions& options);
+  // Starts the six planner services on `bus`, or on its own memq:// when `bus` is null (throws
+  // ConfigError, LcmError). Several hosts with different prefixes may share one bus.
+  explicit PlannerHost(const PlannerHostOptions& options, lcm::LCM* bus = nullptr);
   ~PlannerHost();
   PlannerHost(const PlannerHost&) = delete;
   PlannerHost& operator=(const PlannerHost&) = delete;
 
-  lcm::LCM& lcm() { return *lcm_; }
+  lcm::LCM& lcm() { return *bus_; }
   const std::string& prefix() const { return options_.prefix; }
   // A further service on the same LCM and prefix (the simulator, an observer); it subscribes
   // after the planners, so it sees each message after them.
@@ -50,7 +51,8 @@ class PlannerHost {
 
  private:
   PlannerHostOptions options_;
-  std::unique_ptr<lcm::LCM> lcm_;
+  std::unique_ptr<lcm::LCM> own_lcm_;  // null when the bus is shared
+  lcm::LCM* bus_ = nullptr;
   std::vector<std::unique_ptr<ServiceContext>> contexts_;
   std::unique_ptr<MappingNode> mapping_;
   std::unique_ptr<AwarenessNode> awareness_;

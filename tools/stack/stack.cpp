@@ -2,7 +2,9 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include <algorithm>
 #include <chrono>
+#include <stdexcept>
 
 #include "mmh/arbiter_status_t.hpp"
 #include "mmh/common/lcm_runtime.hpp"
@@ -41,16 +43,66 @@ class Recorder {
 
 }  // namespace
 
-struct Stack::Impl {
-  StackOptions options;
+// The services of one vehicle (one channel prefix) and the observer that records its flight.
+struct Vehicle {
+  StackOptions options;  // with this vehicle's prefix and seeds
   std::unique_ptr<PlannerHost> host;
   std::unique_ptr<SimNode> sim;
-  std::unique_ptr<Recorder> recorder;
   ServiceContext* observer = nullptr;
   FlightRecord record;
   int current_mode = 0;
+  int64_t t0 = 0, next_sample = 0;
+  bool done = false;
 
-  void drain() { host->drain(); }
+  Vehicle(lcm::LCM& bus, const StackOptions& opts) : options(opts) {
+    PlannerHostOptions h;
+    h.config = options.config;
+    h.prefix = options.prefix;
+    h.policy = options.policy;
+    h.map_loss = options.map_loss;
+    h.loss_seed = options.loss_seed;
+    // Planners first, simulator last: when the simulator publishes, everyone already listens.
+    host = std::make_unique<PlannerHost>(h, &bus);
+    sim = std::make_unique<SimNode>(host->addContext("mmh-sim"), options.config, options.sim);
+    observer = &host->addContext("mmh-stack");
+    observer->subscribe(channels::kPlanResult, &Vehicle::onPlanResult, this);
+    observer->subscribe(channels::kTrajectory, &Vehicle::onTrajectory, this);
+    observer->subscribe(channels::kArbiterStatus, &Vehicle::onStatus, this);
+  }
+
+  void publishGoal() {
+    goal_t goal{};
+    goal.header.utime = sim->nowUtime();
+    goal.goal_id = 1;
+    fromVec3(options.sim.goal, goal.position);
+    observer->clock().observe(goal.header.utime);
+    observer->publish(channels::kGoal, goal);
+  }
+
+  // After a simulation step: heartbeats and the 10 Hz path sample.
+  void afterStep() {
+    const int64_t now = sim->nowUtime();
+    host->publishHeartbeats(now);
+    if (now >= next_sample) {
+      next_sample += 100'000;
+      const auto& v = sim->simulator().vehicle();
+      PathSample p;
+      p.t = (now - t0) * 1e-6;
+      p.position = v.state().position;
+      p.speed = v.state().velocity.norm();
+      p.mode = current_mode;
+      record.path.push_back(p);
+    }
+  }
+
+  void finish(double wall_time_s) {
+    record.metrics = sim->metrics();
+    record.sim_time_s = (sim->nowUtime() - t0) * 1e-6;
+    record.end_reason =
+        record.metrics.collided ? "collided" : (record.metrics.reached ? "reached" : "timeout");
+    record.wall_time_s = wall_time_s;
+    done = true;
+  }
 
   // Observer handlers: what the benchmark needs to know about planning.
   void onPlanResult(const plan_result_t& msg) {
@@ -73,68 +125,86 @@ struct Stack::Impl {
   }
 };
 
+struct Stack::Impl {
+  StackOptions options;
+  std::unique_ptr<lcm::LCM> lcm;
+  std::vector<std::unique_ptr<Vehicle>> vehicles;
+  std::unique_ptr<Recorder> recorder;
+
+  void drain() {
+    while (lcm->handleTimeout(0) > 0) {
+    }
+  }
+};
+
 Stack::Stack(const StackOptions& options) : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
   s.options = options;
-  PlannerHostOptions host;
-  host.config = options.config;
-  host.prefix = options.prefix;
-  host.policy = options.policy;
-  host.map_loss = options.map_loss;
-  host.loss_seed = options.loss_seed;
-  // Planners first, simulator last: when the simulator publishes, everyone already listens.
-  s.host = std::make_unique<PlannerHost>(host);
-  s.sim = std::make_unique<SimNode>(s.host->addContext("mmh-sim"), options.config, options.sim);
-  s.observer = &s.host->addContext("mmh-stack");
-  s.observer->subscribe(channels::kPlanResult, &Impl::onPlanResult, &s);
-  s.observer->subscribe(channels::kTrajectory, &Impl::onTrajectory, &s);
-  s.observer->subscribe(channels::kArbiterStatus, &Impl::onStatus, &s);
+  if (options.vehicles < 1) throw std::runtime_error("mmh-stack: at least one vehicle");
+  s.lcm = openLcm("memq://");
+  for (int i = 0; i < options.vehicles; ++i) {
+    StackOptions v = options;
+    v.prefix = vehiclePrefix(i);
+    v.sim.seed = options.sim.seed + i;
+    v.sim.noise_seed = options.sim.noise_seed + i;
+    s.vehicles.push_back(std::make_unique<Vehicle>(*s.lcm, v));
+  }
   if (!options.log_path.empty()) {
-    s.recorder = std::make_unique<Recorder>(options.log_path, &s.sim->simulator());
-    s.host->lcm().subscribe(".*", &Recorder::onRaw, s.recorder.get());
+    s.recorder = std::make_unique<Recorder>(options.log_path, &s.vehicles[0]->sim->simulator());
+    s.lcm->subscribe(".*", &Recorder::onRaw, s.recorder.get());
   }
 }
 
 Stack::~Stack() = default;
 
+std::string Stack::vehiclePrefix(int i) const {
+  const StackOptions& o = impl_->options;
+  return o.vehicles == 1 ? o.prefix : o.prefix + "UAV" + std::to_string(i + 1) + "_";
+}
+
 FlightRecord Stack::fly() {
+  return flyAll().front();
+}
+
+std::vector<FlightRecord> Stack::flyAll(const std::function<void(double)>& on_second) {
   Impl& s = *impl_;
   const auto wall_start = std::chrono::steady_clock::now();
-  goal_t goal{};
-  goal.header.utime = s.sim->nowUtime();
-  goal.goal_id = 1;
-  fromVec3(s.options.sim.goal, goal.position);
-  s.observer->clock().observe(goal.header.utime);
-  s.observer->publish(channels::kGoal, goal);
+  auto wall = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  };
+  for (auto& v : s.vehicles) v->publishGoal();
   s.drain();
-  const int64_t t0 = s.sim->nowUtime();
+  for (auto& v : s.vehicles) v->t0 = v->next_sample = v->sim->nowUtime();
+  const int64_t t0 = s.vehicles[0]->t0;
   const int64_t limit = t0 + static_cast<int64_t>(s.options.timeout_s * 1e6);
-  int64_t next_sample = t0;
-  while (true) {
-    s.sim->step();
-    s.drain();
-    const int64_t now = s.sim->nowUtime();
-    s.host->publishHeartbeats(now);
-    s.drain();
-    if (now >= next_sample) {
-      next_sample += 100'000;
-      const auto& v = s.sim->simulator().vehicle();
-      PathSample p;
-      p.t = (now - t0) * 1e-6;
-      p.position = v.state().position;
-      p.speed = v.state().velocity.norm();
-      p.mode = s.current_mode;
-      s.record.path.push_back(p);
+  int64_t next_second = t0 + 1'000'000;
+  size_t running = s.vehicles.size();
+  while (running > 0) {
+    // Every simulator steps, then every message is delivered: one lock-step for all vehicles.
+    for (auto& v : s.vehicles) {
+      if (!v->done) v->sim->step();
     }
-    if (s.sim->finished() || now >= limit) break;
+    s.drain();
+    for (auto& v : s.vehicles) {
+      if (!v->done) v->afterStep();
+    }
+    s.drain();
+    for (auto& v : s.vehicles) {
+      if (!v->done && (v->sim->finished() || v->sim->nowUtime() >= limit)) {
+        v->finish(wall());
+        --running;
+      }
+    }
+    int64_t now = t0;  // the simulators step together; finished ones stay behind
+    for (auto& v : s.vehicles) now = std::max(now, v->sim->nowUtime());
+    if (on_second && now >= next_second) {
+      next_second += 1'000'000;
+      on_second((now - t0) * 1e-6);
+    }
   }
-  s.record.metrics = s.sim->metrics();
-  s.record.sim_time_s = (s.sim->nowUtime() - t0) * 1e-6;
-  s.record.end_reason =
-      s.record.metrics.collided ? "collided" : (s.record.metrics.reached ? "reached" : "timeout");
-  s.record.wall_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  return s.record;
+  std::vector<FlightRecord> out;
+  for (auto& v : s.vehicles) out.push_back(v->record);
+  return out;
 }
 
 }  // namespace mmh

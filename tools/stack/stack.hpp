@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -20,7 +21,11 @@ namespace mmh {
 struct StackOptions {
   Config config;
   sim::SimOptions sim;
-  std::string prefix;        // channel prefix of the vehicle
+  std::string prefix;  // channel prefix of the vehicle
+  // Vehicles in the one lock-step simulation. With more than one, vehicle i (from 1) has the
+  // prefix `prefix + "UAV<i>_"`, forest seed sim.seed + i - 1 and noise seed
+  // sim.noise_seed + i - 1: its own stack of services and its own world, on the same bus.
+  int vehicles = 1;
   std::string policy;        // empty: arbiter.policy from the config
   double timeout_s = 120.0;  // simulated seconds before giving up
   std::string log_path;      // if set: an LCM log of every message (event time = sim time)
@@ -64,7 +69,13 @@ class Stack {
   Stack& operator=(const Stack&) = delete;
 
   // Publishes the goal and runs until the goal is reached, the vehicle collides, or timeout_s.
+  // The first vehicle's record.
   FlightRecord fly();
+  // Same for every vehicle: runs until each one has finished or timeout_s; one record per
+  // vehicle. `on_second`, if set, is called after every simulated second (e.g. to sample memory).
+  std::vector<FlightRecord> flyAll(const std::function<void(double sim_s)>& on_second = {});
+  // Channel prefix of vehicle i (from 0).
+  std::string vehiclePrefix(int i) const;
 
  private:
   struct Impl;

@@ -288,6 +288,8 @@ bool Arbiter::verifyAnswer(const ModeAnswer& a, std::string* why) const {
   };
   const Trajectory& t = a.trajectory;
   if (t.empty() || !t.isFinite()) return fail("empty or non-finite trajectory");
+  if (t.duration() > params_.max_answer_duration_s)
+    return fail("longer than max_answer_duration_s");
   if (a.start_utime != pending_->start_utime) return fail("wrong start time");
   const KinematicState s0 = t.state(0.0);
   // Continuity: the new trajectory must take over the committed one without a jump.

@@ -81,6 +81,7 @@ ArbiterParams loadArbiterParams(const Config& config) {
                       ": key 'arbiter.check_inflation_m' must not exceed map.inflation_m");
   }
   p.answer_speed_tolerance = config.getDouble("arbiter.answer_limit_tolerance", 0.0, 0.5);
+  p.max_answer_duration_s = config.getDouble("arbiter.max_answer_duration_s", 1.0, 3600.0);
   p.defer_far_collisions = config.getBool("arbiter.defer_far_collisions");
   p.collision_margin_s = config.getDouble("arbiter.collision_margin_s", 0.0, 30.0);
   p.narrow_probe_dist_m = config.getDouble("awareness.narrow_probe_dist_m", 0.05, 10.0);

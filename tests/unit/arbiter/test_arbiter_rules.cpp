@@ -1,6 +1,8 @@
 // The arbiter's rules one by one, with scripted inputs (no LCM, no planners).
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include "mmh/arbiter/arbiter.hpp"
 #include "mmh/common/collision_check.hpp"
 #include "mmh/common/minco.hpp"
@@ -365,4 +367,32 @@ TEST_F(ArbiterRules, EgoPolicyReplansEveryFixedDistanceWithEam) {
   EXPECT_EQ(next[0].trigger, Trigger::kFixed);
   EXPECT_EQ(next[0].mode, Mode::kEam);
   EXPECT_NEAR((s.position - Vector3d(0, 0, 1.2)).norm(), params_.fixed_replan_distance_m, 0.05);
+}
+
+TEST_F(ArbiterRules, AnswersLeavingTheGeofenceAreRejected) {
+  auto a = started(Policy::kMmh);
+  auto r = a->takeRequests().at(0);
+  ModeAnswer bad = okAnswer(r);
+  bad.trajectory = simplePlan(r.start, Vector3d(3, 0, 3.0));  // the fence ends at z = 2.7 m
+  a->onAnswer(bad, at(0.001));
+  EXPECT_FALSE(a->takeCommit().has_value());
+  EXPECT_EQ(a->counters().rejected_answers, 1);
+}
+
+TEST_F(ArbiterRules, OverlongAnswersAreRejectedBeforeBeingWalked) {
+  auto a = started(Policy::kMmh);
+  auto r = a->takeRequests().at(0);
+  ModeAnswer bad = okAnswer(r);
+  // A valid message can hold 4096 pieces of 1e4 s: hovering at the end for 4e7 s.
+  mmh::Piece hover;
+  hover.duration = 1e4;
+  hover.coeffs.col(0) = bad.trajectory.position(bad.trajectory.duration());
+  for (int i = 0; i < 4000; ++i) bad.trajectory.append(hover);
+  const auto t0 = std::chrono::steady_clock::now();
+  a->onAnswer(bad, at(0.001));
+  const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_FALSE(a->takeCommit().has_value());
+  EXPECT_EQ(a->counters().rejected_answers, 1);
+  EXPECT_LT(wall_s, 1.0);
 }

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "mmh/common/checked_decode.hpp"
 #include "mmh/common/log.hpp"
 #include "mmh/common/message_validation.hpp"
 #include "mmh/heartbeat_t.hpp"
@@ -152,19 +153,14 @@ class ServiceContext::TypedSubscription : public detail::SubscriptionBase {
   void onRaw(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
     if (ctx_->dropForLoss(channel)) return;
     Msg msg;
-    int status = -1;
-    try {
-      status = msg.decode(rbuf->data, 0, rbuf->data_size);
-    } catch (const std::exception&) {
-      status = -1;  // e.g. a negative array length makes the generated code throw
-    }
-    if (status < 0) {
+    std::string why;
+    const DecodeOutcome outcome = decodeChecked(rbuf->data, rbuf->data_size, msg, &why);
+    if (outcome == DecodeOutcome::kUndecodable) {
       ctx_->reject("rejected_decode",
                    channel + ": cannot decode as " + Msg::getTypeName() + " (wrong type?)");
       return;
     }
-    std::string why;
-    if (!validate(msg, &why)) {
+    if (outcome == DecodeOutcome::kInvalid) {
       ctx_->reject("rejected_invalid", channel + ": " + why);
       return;
     }

@@ -24,6 +24,7 @@ constexpr int32_t kMaxPointcloudCoords = 3 * 4'000'000;
 constexpr int32_t kMaxWaypoints = 1024;
 constexpr int32_t kMaxHeartbeatCounters = 256;
 constexpr double kMaxAbsCoordinate_m = 1e6;
+constexpr size_t kMaxTextLength = 4096;  // free-text fields (detail, state_detail)
 
 bool validate(const header_t& msg, std::string* why);
 bool validate(const odometry_t& msg, std::string* why);

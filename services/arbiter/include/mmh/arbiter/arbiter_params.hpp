@@ -45,6 +45,9 @@ struct ArbiterParams {
                                          // below the planners' so discretisation cannot make a
                                          // freshly verified answer look colliding
   double answer_speed_tolerance = 0.05;  // accepted relative excess over v_max / a_max (EAM's)
+  // Answers longer than this are refused first: the geofence and collision checks walk an answer
+  // in small time steps, and a hostile 4096-piece answer of 1e4 s pieces would take hours.
+  double max_answer_duration_s = 120.0;
   // A collision found beyond the halfway point (plus this margin) of the committed trajectory is
   // left to the halfway replan, which comes first; nearer ones trigger EAM at once.
   bool defer_far_collisions = true;
