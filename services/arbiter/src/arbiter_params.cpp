@@ -49,6 +49,7 @@ ArbiterParams loadArbiterParams(const Config& config) {
   p.fixed_replan_distance_m = config.getDouble("arbiter.fixed_replan_distance_m", 0.1, 50.0);
   p.parallel_modes = config.getBool("arbiter.parallel_modes");
   p.stale_map_s = config.getDouble("arbiter.stale_map_s", 0.05, 60.0);
+  p.stale_odometry_s = config.getDouble("arbiter.stale_odometry_s", 0.02, 60.0);
   p.inflation_m = config.getDouble("map.inflation_m", 0.0, 5.0);
   p.check_inflation_m = config.getDouble("arbiter.check_inflation_m", 0.0, 5.0);
   if (p.check_inflation_m > p.inflation_m) {

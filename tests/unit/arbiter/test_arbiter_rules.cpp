@@ -1,6 +1,8 @@
 // The arbiter's rules one by one, with scripted inputs (no LCM, no planners).
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include "mmh/arbiter/arbiter.hpp"
 #include "mmh/common/collision_check.hpp"
 #include "mmh/common/minco.hpp"
@@ -347,4 +349,85 @@ TEST_F(ArbiterRules, EgoPolicyReplansEveryFixedDistanceWithEam) {
   EXPECT_EQ(next[0].trigger, Trigger::kFixed);
   EXPECT_EQ(next[0].mode, Mode::kEam);
   EXPECT_NEAR((s.position - Vector3d(0, 0, 1.2)).norm(), params_.fixed_replan_distance_m, 0.05);
+}
+
+TEST_F(ArbiterRules, StoppedOdometryStopsPlanningUntilItReturns) {
+  auto a = started(Policy::kMmh);
+  a->onAnswer(okAnswer(a->takeRequests().at(0)), at(0.001));
+  ASSERT_TRUE(a->takeCommit());
+  ASSERT_TRUE(fly(*a, 0.01, 1.0).empty());
+  a->takeDecisions();
+  // Maps keep coming, ODOMETRY does not.
+  std::optional<CommitOut> stop;
+  double t = 1.0;
+  for (; t < 1.0 + params_.stale_odometry_s + 0.3; t += 0.1) {
+    a->onMapUpdated(grid_, ++map_seq_, at(t), at(t));
+    EXPECT_TRUE(a->takeRequests().empty()) << "planned at " << t << " s without fresh odometry";
+    if (auto c = a->takeCommit()) {
+      ASSERT_FALSE(stop.has_value()) << "a second commit while odometry is stale";
+      stop = c;
+    }
+  }
+  ASSERT_TRUE(stop.has_value());
+  EXPECT_EQ(stop->mode, Mode::kStop);
+  EXPECT_TRUE(a->odometryStale(at(t)));
+  EXPECT_EQ(a->counters().stale_odometry, 1);
+  auto decisions = a->takeDecisions();
+  ASSERT_FALSE(decisions.empty());
+  EXPECT_EQ(decisions.back().outcome, Outcome::kStopping);
+  EXPECT_NE(decisions.back().detail.find("ODOMETRY is stale"), std::string::npos);
+  // Odometry returns: planning resumes from the committed (stopping) trajectory.
+  auto resumed = fly(*a, t, t + 0.5);
+  ASSERT_FALSE(resumed.empty());
+  EXPECT_FALSE(a->odometryStale(at(t + 0.5)));
+  EXPECT_EQ(a->counters().stale_odometry, 1);
+}
+
+TEST_F(ArbiterRules, StoppedOdometryDetectedFromTheRepeatedGoal) {
+  auto a = started(Policy::kMmh);
+  a->onAnswer(okAnswer(a->takeRequests().at(0)), at(0.001));
+  ASSERT_TRUE(a->takeCommit());
+  ASSERT_TRUE(fly(*a, 0.01, 1.0).empty());
+  // Everything stops but the goal publisher (1 Hz, its own clock).
+  std::string why;
+  EXPECT_TRUE(a->setGoal(1, goal_, at(2.0), &why));
+  auto commit = a->takeCommit();
+  ASSERT_TRUE(commit.has_value());
+  EXPECT_EQ(commit->mode, Mode::kStop);
+  EXPECT_EQ(a->counters().stale_odometry, 1);
+}
+
+TEST_F(ArbiterRules, AnswerArrivingWhileOdometryIsStaleIsNotCommitted) {
+  params_.replan_lead_s = 1.0;
+  params_.answer_deadline_s = 1.0;
+  auto a = started(Policy::kMmh);
+  auto r = a->takeRequests().at(0);
+  // No odometry since 0 s; a map at 0.6 s moves the clock past stale_odometry_s.
+  a->onMapUpdated(grid_, ++map_seq_, at(0.6), at(0.6));
+  a->onAnswer(okAnswer(r), at(0.7));
+  EXPECT_FALSE(a->takeCommit().has_value());
+  EXPECT_EQ(a->counters().not_committed_stale_odom, 1);
+  auto decisions = a->takeDecisions();
+  ASSERT_FALSE(decisions.empty());
+  EXPECT_EQ(decisions.front().outcome, Outcome::kFailed);
+  EXPECT_NE(decisions.front().detail.find("ODOMETRY is stale"), std::string::npos);
+}
+
+TEST_F(ArbiterRules, SilentModeFallsBackToTheNextMode) {
+  auto a = started(Policy::kMmh, false);
+  auto som = a->takeRequests().at(0);
+  ASSERT_EQ(som.mode, Mode::kSom);
+  // SOM's process is gone: no answer. Odometry moves the clock past the deadline.
+  a->onOdometry(rest(Vector3d(0, 0, 1.2)), at(params_.answer_deadline_s + 0.01));
+  EXPECT_FALSE(a->takeCommit().has_value());
+  EXPECT_EQ(a->counters().unanswered, 1);
+  a->onOdometry(rest(Vector3d(0, 0, 1.2)), at(params_.answer_deadline_s + 0.02));
+  auto eam = a->takeRequests();
+  ASSERT_EQ(eam.size(), 1u);
+  EXPECT_EQ(eam[0].mode, Mode::kEam);
+  EXPECT_EQ(eam[0].trigger, Trigger::kRetry);
+  a->onAnswer(okAnswer(eam[0]), at(params_.answer_deadline_s + 0.021));
+  auto commit = a->takeCommit();
+  ASSERT_TRUE(commit.has_value());
+  EXPECT_EQ(commit->mode, Mode::kEam);
 }
