@@ -1,6 +1,8 @@
 // The LCM runtime over memq:// (in-process): decoding, validation, counters, prefixes, clock.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include "mmh/common/lcm_runtime.hpp"
 #include "mmh/goal_t.hpp"
 #include "mmh/odometry_t.hpp"
@@ -117,4 +119,27 @@ TEST(Runtime, LossSwitchDropsAShare) {
   EXPECT_GT(sink.goals.size(), 600u);
   EXPECT_LT(sink.goals.size(), 800u);
   EXPECT_EQ(sub.counter("test_dropped") + static_cast<int64_t>(sink.goals.size()), 1000);
+}
+
+TEST(Runtime, LossSwitchFromTheEnvironment) {
+  // How fault tests make separate processes lose LOCAL_MAP: the variable is read by every context.
+  setenv("MMH_TEST_INCOMING_LOSS", "GOAL=1.0,ODOMETRY=oops", 1);
+  auto lcm = mmh::openLcm("memq://");
+  mmh::ServiceContext pub(*lcm, "pub", "");
+  mmh::ServiceContext sub(*lcm, "sub", "");
+  unsetenv("MMH_TEST_INCOMING_LOSS");
+  Sink sink;
+  sub.subscribe(mmh::channels::kGoal, &Sink::onGoal, &sink);
+  sub.subscribe(mmh::channels::kOdometry, &Sink::onOdom, &sink);
+  for (int i = 1; i <= 20; ++i) {
+    mmh::goal_t g{};
+    g.header.utime = i;
+    pub.publish(mmh::channels::kGoal, g);
+    mmh::odometry_t o = odom(i);
+    pub.publish(mmh::channels::kOdometry, o);
+    drain(*lcm);
+  }
+  EXPECT_TRUE(sink.goals.empty());
+  EXPECT_EQ(sub.counter("test_dropped"), 20);
+  EXPECT_EQ(sink.odoms.size(), 20u);  // a malformed item is ignored (with a warning)
 }

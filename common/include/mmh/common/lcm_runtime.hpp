@@ -114,6 +114,8 @@ class ServiceContext {
   void publishHeartbeat();
 
   // Test-only loss switch: drop this fraction of the messages received on base_channel.
+  // Every context also reads $MMH_TEST_INCOMING_LOSS ("LOCAL_MAP=0.3[,CHANNEL=F...]", base channel
+  // names) at construction, so fault tests can make separate processes lossy; it logs a warning.
   void setIncomingLoss(const std::string& base_channel, double fraction, uint64_t seed = 1);
 
  private:
@@ -121,6 +123,7 @@ class ServiceContext {
   class TypedSubscription;
   bool admit(const std::string& channel, const std::string& source, int64_t utime, int64_t seq);
   bool dropForLoss(const std::string& channel);
+  void applyLossFromEnvironment();
 
   lcm::LCM& lcm_;
   std::string service_, prefix_, host_;
