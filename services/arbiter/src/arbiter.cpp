@@ -309,7 +309,21 @@ bool Arbiter::verifyAnswer(const ModeAnswer& a, std::string* why) const {
       return fail("leaves the geofence");
     }
   }
-  if (grid_ && firstCollisionTime(*grid_, t, 0.0, t.duration()).has_value()) {
+  double clear_from = 0.0;
+  if (grid_ && isPointBlocked(*grid_, s0.position)) {
+    // A start inside the margin (e.g. stopped next to a newly mapped obstacle) may leave it, as
+    // the planners allow: through no occupied voxel, out of the margin near the start.
+    if (firstCollisionTime(*grid_, t, 0.0, t.duration(), CollisionLayer::kOccupied)) {
+      return fail("enters an obstacle");
+    }
+    while (clear_from < t.duration() && isPointBlocked(*grid_, t.position(clear_from))) {
+      clear_from += 0.01;
+    }
+    if ((t.position(clear_from) - s0.position).norm() > params_.start_escape_radius_m) {
+      return fail("does not leave the obstacle margin near its start");
+    }
+  }
+  if (grid_ && firstCollisionTime(*grid_, t, clear_from, t.duration()).has_value()) {
     return fail("collides with the arbiter's map");
   }
   return true;

@@ -50,6 +50,7 @@ ArbiterParams loadArbiterParams(const Config& config) {
   p.parallel_modes = config.getBool("arbiter.parallel_modes");
   p.stale_map_s = config.getDouble("arbiter.stale_map_s", 0.05, 60.0);
   p.stale_odometry_s = config.getDouble("arbiter.stale_odometry_s", 0.02, 60.0);
+  p.start_escape_radius_m = config.getDouble("arbiter.start_escape_radius_m", 0.0, 5.0);
   p.inflation_m = config.getDouble("map.inflation_m", 0.0, 5.0);
   p.check_inflation_m = config.getDouble("arbiter.check_inflation_m", 0.0, 5.0);
   if (p.check_inflation_m > p.inflation_m) {

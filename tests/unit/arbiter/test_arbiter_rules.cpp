@@ -431,3 +431,26 @@ TEST_F(ArbiterRules, SilentModeFallsBackToTheNextMode) {
   ASSERT_TRUE(commit.has_value());
   EXPECT_EQ(commit->mode, Mode::kEam);
 }
+
+TEST_F(ArbiterRules, AnAnswerMayLeaveTheMarginItStartsIn) {
+  // The vehicle stopped 0.15 m from a newly mapped pillar: inside the check margin. Answers that
+  // leave the margin near the start are accepted (else it would be stuck there for good), ones
+  // that stay in it or go into the obstacle are not.
+  putPillar(0.0, 0.45, 0.3);
+  auto a = started(Policy::kMmh);
+  auto r = a->takeRequests().at(0);
+  ASSERT_TRUE(mmh::isPointBlocked(grid_, r.start.position));
+  ModeAnswer into = okAnswer(r);
+  into.trajectory = simplePlan(r.start, Vector3d(0.0, 3.0, 1.2));  // through the pillar
+  a->onAnswer(into, at(0.001));
+  EXPECT_FALSE(a->takeCommit().has_value());
+  EXPECT_EQ(a->counters().rejected_answers, 1);
+  // Retry (SOM) with an answer that leaves along +x.
+  a->onOdometry(rest(Vector3d(0, 0, 1.2)), at(0.01));
+  auto retry = a->takeRequests();
+  ASSERT_EQ(retry.size(), 1u);
+  a->onAnswer(okAnswer(retry[0]), at(0.011));
+  auto commit = a->takeCommit();
+  ASSERT_TRUE(commit.has_value());
+  EXPECT_EQ(commit->mode, retry[0].mode);
+}

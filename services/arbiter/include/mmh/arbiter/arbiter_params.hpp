@@ -39,8 +39,10 @@ struct ArbiterParams {
   // left to the halfway replan, which comes first; nearer ones trigger EAM at once.
   bool defer_far_collisions = true;
   double collision_margin_s = 1.5;
-  double stale_map_s = 1.0;          // LOCAL_MAP older than this (message clock) is stale
+  double stale_map_s = 0.5;          // LOCAL_MAP older than this (message clock) is stale
   double stale_odometry_s = 0.5;     // ODOMETRY older than this (message clock): no planning
+  double start_escape_radius_m = 0.5;  // an answer starting in the check margin must leave it
+                                       // within this distance of its start
   double narrow_probe_dist_m = 0.8;  // for moving a local target out of obstacles
   Eigen::Vector3d geofence_min_m = Eigen::Vector3d(-1e3, -1e3, 0.0);
   Eigen::Vector3d geofence_max_m = Eigen::Vector3d(1e3, 1e3, 1e3);
