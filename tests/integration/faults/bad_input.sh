@@ -27,13 +27,15 @@ fail() {
 # 1. The planning stack (no simulator: nothing else publishes, so only the catalogue arrives).
 # UDP cannot carry a scan of millions of points here (the kernel's receive buffer drops its
 # fragments; tests/unit/mapping sends two million through memq://), so mapping.max_points is
-# lowered to 50,000 and the oversized scan has 120,000 points (1.4 MB).
+# lowered to 50,000 and the oversized scan has 120,000 points (1.4 MB), with a 4 MB receive
+# buffer (this kernel's net.core.rmem_max) so that the kernel keeps all of its fragments.
+export LCM_DEFAULT_URL='udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304'
 sed 's/^\(  max_points:\).*/\1 50000/' "$root/deploy/config/default.yaml" >"$run/config.yaml"
 export MMH_CONFIG=$run/config.yaml
 "$launch/stack.sh" start >/dev/null
 "$build/bin/mmh-bad-input" --target stack --huge-scan-points 120000 --mapping-max-points 50000 ||
   fail "the stack did not survive or count its bad input"
-unset MMH_CONFIG
+unset MMH_CONFIG LCM_DEFAULT_URL
 "$launch/stack.sh" status | grep -v "mmh-sim\|mmh-goal" | grep -q stopped && fail "a service died"
 grep -h "rejected\|refused\|scan_" "$run"/*.log | tail -n 12 || true
 
