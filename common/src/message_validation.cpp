@@ -94,9 +94,12 @@ bool validate(const trajectory_t& msg, std::string* why) {
     return fail(why, "start_utime is negative or absurd");
   if (msg.source_mode < 0 || msg.source_mode > plan_request_t::MODE_STOP)
     return fail(why, "unknown source_mode " + std::to_string(msg.source_mode));
+  double total_s = 0.0;
   for (const traj_piece_t& p : msg.pieces) {
     if (!std::isfinite(p.duration_s) || p.duration_s <= 0.0 || p.duration_s > 1e4)
       return fail(why, "piece duration outside (0, 1e4] s");
+    total_s += p.duration_s;
+    if (total_s > kMaxTrajectoryDuration_s) return fail(why, "trajectory lasts more than an hour");
     for (int a = 0; a < 3; ++a) {
       if (!finiteVec(p.coeffs[a], 8, 1e12)) return fail(why, "piece coefficient not finite");
     }

@@ -373,7 +373,15 @@ void addStackMessages(std::vector<BadMessage>& out, Stamper& st, const Catalogue
         {"PLAN_RESULT with a NaN cost", result, encode(r), {{"mmh-arbiter", "rejected_invalid"}}});
     r.header = st.next(result);
     r.cost_total = 0.0;
-    r.status = plan_result_t::STATUS_OK;  // OK without a trajectory
+    r.status = plan_result_t::STATUS_OK;
+    r.trajectory = straightTrajectory(st.next(result));
+    r.trajectory.pieces[0].duration_s = r.trajectory.pieces[1].duration_s = 9000.0;
+    out.push_back({"PLAN_RESULT with a trajectory lasting 5 hours",
+                   result,
+                   encode(r),
+                   {{"mmh-arbiter", "rejected_invalid"}}});
+    r.header = st.next(result);
+    r.trajectory = trajectory_t{};  // OK without a trajectory
     out.push_back({"PLAN_RESULT OK without a trajectory",
                    result,
                    encode(r),
@@ -412,6 +420,9 @@ void addSimMessages(std::vector<BadMessage>& out, Stamper& st) {
   t = straightTrajectory(st.next(traj));
   t.source_mode = 17;
   out.push_back({"TRAJECTORY from mode 17", traj, encode(t), {{"mmh-sim", "rejected_invalid"}}});
+  t = straightTrajectory(st.next(traj));
+  t.pieces[0].duration_s = t.pieces[1].duration_s = 9000.0;
+  out.push_back({"TRAJECTORY lasting 5 hours", traj, encode(t), {{"mmh-sim", "rejected_invalid"}}});
   t = straightTrajectory(st.next(traj));
   trajectory_t empty = t;
   empty.pieces.clear();

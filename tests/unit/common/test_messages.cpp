@@ -251,6 +251,10 @@ TEST(Messages, ValidatorsRefuseAbsurdTimesModesAndIds) {
   EXPECT_TRUE(mmh::validate(t, &why)) << why;
   t.start_utime = int64_t{1} << 62;
   EXPECT_FALSE(mmh::validate(t, &why));
+  t = sampleTrajectory();
+  t.pieces[0].duration_s = t.pieces[1].duration_s = 1900.0;  // each piece fine, 63 min in all
+  EXPECT_FALSE(mmh::validate(t, &why));
+  EXPECT_NE(why.find("hour"), std::string::npos);
 
   mmh::plan_request_t r{};
   r.header = header(6);

@@ -24,6 +24,8 @@ constexpr int32_t kMaxPointcloudCoords = 3 * 4'000'000;
 constexpr int32_t kMaxWaypoints = 1024;
 constexpr int32_t kMaxHeartbeatCounters = 256;
 constexpr double kMaxAbsCoordinate_m = 1e6;
+// No trajectory of this system lasts an hour; checking a longer one would take the arbiter minutes.
+constexpr double kMaxTrajectoryDuration_s = 3600.0;
 // Message-clock times beyond this (about the year 5100, in microseconds since 1970) are absurd: one
 // such message would move a receiver's clock so far ahead that every input looked stale forever.
 constexpr int64_t kMaxUtime_us = int64_t{100'000'000} * 1'000'000'000;
