@@ -124,6 +124,18 @@ void ServiceContext::reject(const std::string& counter, const std::string& reaso
 
 bool ServiceContext::admit(const std::string& channel, const std::string& source, int64_t utime,
                            int64_t seq) {
+  // One message stamped far ahead would move the clock past all real input, which then looks
+  // stale until that time. The clock may lead by what passed on the wall clock meanwhile (idle
+  // periods, paused replays) plus kMaxClockLeadUs (clock offsets between machines).
+  const int64_t wall_now = wallTimeUs();
+  if (clock_.now() > 0 &&
+      utime - clock_.now() > kMaxClockLeadUs + (wall_now - clock_moved_wall_us_)) {
+    reject("rejected_time_jump", channel + " from " + source + ": utime jumps " +
+                                     std::to_string((utime - clock_.now()) / 1000000) +
+                                     " s ahead of the message clock");
+    return false;
+  }
+  if (utime > clock_.now()) clock_moved_wall_us_ = wall_now;
   auto& last = last_in_[channel + "|" + source];
   if (last.first > 0 && utime < last.first) {
     if (seq <= 1) {

@@ -256,6 +256,10 @@ void addStackMessages(std::vector<BadMessage>& out, Stamper& st, const Catalogue
     out.push_back({"GOAL stamped 146,000 years ahead", goal, encode(g),
                    each(kGoalReceivers, "rejected_invalid")});
     g.header = st.next(goal);
+    g.header.utime += int64_t{3600} * 1'000'000;
+    out.push_back({"GOAL stamped an hour ahead of the other messages", goal, encode(g),
+                   each(kGoalReceivers, "rejected_time_jump")});
+    g.header = st.next(goal);
     g.goal_id = -3;
     out.push_back(
         {"GOAL with a negative id", goal, encode(g), each(kGoalReceivers, "rejected_invalid")});

@@ -143,3 +143,22 @@ TEST(Runtime, LossSwitchFromTheEnvironment) {
   EXPECT_EQ(sub.counter("test_dropped"), 20);
   EXPECT_EQ(sink.odoms.size(), 20u);  // a malformed item is ignored (with a warning)
 }
+
+TEST(Runtime, AJumpFarAheadOfTheMessageClockIsRefused) {
+  auto lcm = mmh::openLcm("memq://");
+  mmh::ServiceContext pub(*lcm, "pub", "");
+  mmh::ServiceContext sub(*lcm, "sub", "");
+  Sink sink;
+  sub.subscribe(mmh::channels::kOdometry, &Sink::onOdom, &sink);
+  for (int64_t utime :
+       {int64_t{1'000'000}, int64_t{1'000'000} + 3600'000'000, int64_t{3'000'000}}) {
+    mmh::odometry_t o = odom(utime);
+    pub.publish(mmh::channels::kOdometry, o);
+    drain(*lcm);
+  }
+  // The hour-ahead message would have made every real message look an hour old.
+  ASSERT_EQ(sink.odoms.size(), 2u);
+  EXPECT_EQ(sink.odoms[1].header.utime, 3'000'000);
+  EXPECT_EQ(sub.counter("rejected_time_jump"), 1);
+  EXPECT_EQ(sub.clock().now(), 3'000'000);
+}

@@ -34,7 +34,7 @@ struct Sink {
 };
 
 const std::set<std::string> kRuntimeCounters = {"rejected_decode", "rejected_invalid",
-                                                "rejected_time_backwards"};
+                                                "rejected_time_backwards", "rejected_time_jump"};
 
 void checkCatalogue(mmh::bad_input::Target target) {
   auto lcm = mmh::openLcm("memq://");
