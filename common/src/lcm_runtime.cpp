@@ -6,6 +6,8 @@
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
+#include <functional>
+#include <sstream>
 
 namespace mmh {
 namespace {
@@ -69,7 +71,37 @@ ServiceContext::ServiceContext(lcm::LCM& lcm, std::string service, std::string p
       service_(std::move(service)),
       prefix_(std::move(prefix)),
       host_(hostName()),
-      started_wall_us_(wallTimeUs()) {}
+      started_wall_us_(wallTimeUs()) {
+  applyLossFromEnvironment();
+}
+
+void ServiceContext::applyLossFromEnvironment() {
+  const char* env = std::getenv("MMH_TEST_INCOMING_LOSS");
+  if (!env || !*env) return;
+  std::stringstream list(env);
+  std::string item;
+  // A seed per service, so that receivers lose different messages.
+  const uint64_t seed = std::hash<std::string>{}(service_) ^ static_cast<uint64_t>(getpid());
+  while (std::getline(list, item, ',')) {
+    const size_t eq = item.find('=');
+    double fraction = -1.0;
+    if (eq != std::string::npos) {
+      const char* text = item.c_str() + eq + 1;
+      char* end = nullptr;
+      fraction = std::strtod(text, &end);
+      if (end == text || *end != '\0') fraction = -1.0;
+    }
+    if (!(fraction >= 0.0 && fraction <= 1.0)) {
+      logWarn(service_ + ": ignoring MMH_TEST_INCOMING_LOSS item '" + item +
+              "' (expected CHANNEL=FRACTION in [0, 1])");
+      continue;
+    }
+    const std::string base = item.substr(0, eq);
+    setIncomingLoss(base, fraction, seed);
+    logWarn(service_ + ": TEST SWITCH MMH_TEST_INCOMING_LOSS: dropping " +
+            std::to_string(fraction) + " of the messages on " + channel(base));
+  }
+}
 
 ServiceContext::~ServiceContext() {
   for (lcm::Subscription* s : lcm_subscriptions_) lcm_.unsubscribe(s);
@@ -92,6 +124,18 @@ void ServiceContext::reject(const std::string& counter, const std::string& reaso
 
 bool ServiceContext::admit(const std::string& channel, const std::string& source, int64_t utime,
                            int64_t seq) {
+  // One message stamped far ahead would move the clock past all real input, which then looks
+  // stale until that time. The clock may lead by what passed on the wall clock meanwhile (idle
+  // periods, paused replays) plus kMaxClockLeadUs (clock offsets between machines).
+  const int64_t wall_now = wallTimeUs();
+  if (clock_.now() > 0 &&
+      utime - clock_.now() > kMaxClockLeadUs + (wall_now - clock_moved_wall_us_)) {
+    reject("rejected_time_jump", channel + " from " + source + ": utime jumps " +
+                                     std::to_string((utime - clock_.now()) / 1000000) +
+                                     " s ahead of the message clock");
+    return false;
+  }
+  if (utime > clock_.now()) clock_moved_wall_us_ = wall_now;
   auto& last = last_in_[channel + "|" + source];
   if (last.first > 0 && utime < last.first) {
     if (seq <= 1) {

@@ -45,6 +45,7 @@ bool validQuaternion(const double* q) {
 
 bool validate(const header_t& msg, std::string* why) {
   if (msg.utime < 0) return fail(why, "header.utime is negative");
+  if (msg.utime > kMaxUtime_us) return fail(why, "header.utime is absurdly far in the future");
   if (msg.seq < 0) return fail(why, "header.seq is negative");
   if (msg.source.size() > 256) return fail(why, "header.source is too long");
   if (!validIdentifier(msg.source)) return fail(why, "header.source has control characters");
@@ -80,12 +81,14 @@ bool validate(const pointcloud_t& msg, std::string* why) {
 
 bool validate(const goal_t& msg, std::string* why) {
   if (!validate(msg.header, why)) return false;
+  if (msg.goal_id < 0) return fail(why, "goal_id is negative");
   if (!finiteVec(msg.position, 3)) return fail(why, "goal position is not finite");
   return true;
 }
 
 bool validate(const local_map_t& msg, std::string* why) {
   if (!validate(msg.header, why)) return false;
+  if (msg.num_changed < 0) return fail(why, "num_changed is negative");
   return validateLocalMap(msg, why);
 }
 
@@ -104,10 +107,16 @@ bool validate(const trajectory_t& msg, std::string* why) {
   if (msg.num_pieces < 0 || static_cast<size_t>(msg.num_pieces) != msg.pieces.size())
     return fail(why, "num_pieces disagrees with the data");
   if (msg.num_pieces > kMaxTrajectoryPieces) return fail(why, "trajectory has too many pieces");
-  if (msg.start_utime < 0) return fail(why, "start_utime is negative");
+  if (msg.start_utime < 0 || msg.start_utime > kMaxUtime_us)
+    return fail(why, "start_utime is negative or absurd");
+  if (msg.source_mode < 0 || msg.source_mode > plan_request_t::MODE_STOP)
+    return fail(why, "unknown source_mode " + std::to_string(msg.source_mode));
+  double total_s = 0.0;
   for (const traj_piece_t& p : msg.pieces) {
     if (!std::isfinite(p.duration_s) || p.duration_s <= 0.0 || p.duration_s > 1e4)
       return fail(why, "piece duration outside (0, 1e4] s");
+    total_s += p.duration_s;
+    if (total_s > kMaxTrajectoryDuration_s) return fail(why, "trajectory lasts more than an hour");
     for (int a = 0; a < 3; ++a) {
       if (!finiteVec(p.coeffs[a], 8, 1e12)) return fail(why, "piece coefficient not finite");
     }
@@ -131,6 +140,8 @@ bool validate(const plan_request_t& msg, std::string* why) {
     if (w.size() != 3 || !finiteVec(w.data(), 3)) return fail(why, "bad waypoint");
   }
   if (msg.start_utime < 0 || msg.deadline_utime < 0) return fail(why, "negative time");
+  if (msg.start_utime > kMaxUtime_us || msg.deadline_utime > kMaxUtime_us)
+    return fail(why, "absurd time");
   return validate(msg.reference, why);
 }
 
@@ -138,6 +149,10 @@ bool validate(const plan_result_t& msg, std::string* why) {
   if (!validate(msg.header, why)) return false;
   if (msg.status != plan_result_t::STATUS_OK && msg.status != plan_result_t::STATUS_FAILED)
     return fail(why, "unknown status");
+  // Answers come from a planning mode; the arbiter indexes its per-mode counters with it.
+  if (msg.mode < plan_request_t::MODE_FPM || msg.mode > plan_request_t::MODE_EAM)
+    return fail(why, "unknown mode " + std::to_string(msg.mode));
+  if (msg.reason < 0) return fail(why, "negative reason code");
   if (msg.compute_us < 0) return fail(why, "negative compute time");
   if (msg.status == plan_result_t::STATUS_OK && msg.trajectory.num_pieces == 0)
     return fail(why, "successful result without a trajectory");

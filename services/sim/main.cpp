@@ -46,6 +46,8 @@ int main(int argc, char** argv) {
   mmh::setLogServiceName("mmh-sim");
   try {
     const mmh::Config config = mmh::loadNodeConfig(node);
+    const auto max_scan_lag_us =
+        static_cast<int64_t>(config.getDouble("sim.max_scan_lag_s", 0.0, 60.0) * 1e6);
     auto lcm = mmh::openLcm(node.lcm_url);
     mmh::ServiceContext ctx(*lcm, "mmh-sim", node.prefix);
     // Real time: simulated time starts at the wall clock, so every process shares one clock.
@@ -74,7 +76,10 @@ int main(int argc, char** argv) {
         if (wait_ms <= 0) std::this_thread::sleep_for(std::chrono::microseconds(200));
       }
       if (mmh::stopRequested()) break;
-      sim.step();
+      // Far behind the wall clock (the process was stopped or starved), the steps run back to
+      // back to catch up: their sensor frames are stale, and a burst of them would overflow the
+      // receivers' UDP buffers (losing e.g. a TRAJECTORY), so only odometry is sent then.
+      sim.step(mmh::wallTimeUs() - due < max_scan_lag_us);
       ctx.maybePublishHeartbeat(mmh::wallTimeUs());
       if (exit_when_finished && sim.finished()) break;
       if (duration_s > 0.0 && (sim.nowUtime() - sim0) * 1e-6 >= duration_s) break;

@@ -44,7 +44,7 @@ void ArbiterNode::onGoal(const goal_t& msg) {
 
 void ArbiterNode::onOdometry(const odometry_t& msg) {
   arbiter_.onOdometry(stateOf(msg), msg.header.utime);
-  if (arbiter_.hasGoal() && map_.hasMap()) {
+  if (arbiter_.hasGoal() && map_.hasMap() && !arbiter_.odometryStale(ctx_.clock().now())) {
     ctx_.setState(heartbeat_t::STATE_OK, "");
   }
   flush();
@@ -138,6 +138,22 @@ void ArbiterNode::flush() {
     msg.detail = d.detail;
     ctx_.publish(channels::kArbiterStatus, msg);
     if (d.outcome == arbiter::Outcome::kStopping) logWarn("arbiter: stopping: " + d.detail);
+    if (d.outcome == arbiter::Outcome::kFailed && failed_log_.shouldLog()) {
+      logWarn("arbiter: decision " + std::to_string(d.decision_seq) + " failed: " + d.detail);
+    }
+  }
+  // The library's fault counters, mirrored into HEARTBEAT.
+  auto mirror = [this](const char* name, int64_t value) {
+    ctx_.increment(name, value - ctx_.counter(name));
+  };
+  mirror("odometry_stale", n.stale_odometry);
+  mirror("not_committed_odometry_stale", n.not_committed_stale_odom);
+  mirror("unanswered_requests", n.unanswered);
+  mirror("stops", n.stops);
+  mirror("failed_decisions", n.failures);  // e.g. an unreachable goal: every mode fails
+  mirror("rejected_answers", n.rejected_answers);
+  if (arbiter_.odometryStale(now)) {
+    ctx_.setState(heartbeat_t::STATE_DEGRADED, "ODOMETRY is stale: not planning");
   }
 }
 

@@ -32,6 +32,7 @@ class ArbiterNode {
   ServiceContext& ctx_;
   arbiter::Arbiter arbiter_;
   LocalMapReceiver map_;
+  LogLimiter failed_log_;  // failed decisions (a goal no mode reaches fails at the map rate)
 };
 
 }  // namespace mmh

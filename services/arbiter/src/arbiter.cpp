@@ -31,9 +31,16 @@ bool Arbiter::mapStale(int64_t now) const {
   return map_seq_ == 0 || (now - map_utime_) * kUs > params_.stale_map_s;
 }
 
+bool Arbiter::odometryStale(int64_t now) const {
+  return have_odometry_ && (now - odometry_utime_) * kUs > params_.stale_odometry_s;
+}
+
 bool Arbiter::setGoal(int64_t goal_id, const Eigen::Vector3d& goal, int64_t now, std::string* why) {
   now_ = std::max(now_, now);
-  if (goal_ && goal_id == goal_id_ && (goal - *goal_).norm() < 1e-6) return true;  // repeat
+  if (goal_ && goal_id == goal_id_ && (goal - *goal_).norm() < 1e-6) {  // repeat
+    evaluate(now_);  // its clock may show that ODOMETRY stopped
+    return true;
+  }
   auto refuse = [&](const std::string& text) {
     ++counters_.rejected_goals;
     if (why) *why = text;
@@ -85,7 +92,9 @@ void Arbiter::onMapUpdated(const VoxelGrid& grid, int64_t map_seq, int64_t map_u
 void Arbiter::onOdometry(const KinematicState& state, int64_t now) {
   odometry_ = state;
   have_odometry_ = true;
+  odometry_utime_ = std::max(odometry_utime_, now);
   now_ = std::max(now_, now);
+  if (stopped_for_stale_odometry_ && !odometryStale(now_)) stopped_for_stale_odometry_ = false;
   evaluate(now_);
 }
 
@@ -99,7 +108,9 @@ void Arbiter::onAnswer(const ModeAnswer& answer, int64_t now) {
     return;
   }
   bool known = false;
-  for (const auto& r : pending_->requests) known |= (r.request_id == answer.request_id);
+  for (const auto& r : pending_->requests) {
+    known |= (r.request_id == answer.request_id && r.mode == answer.mode);
+  }
   bool duplicate = false;
   for (const auto& a : pending_->answers) duplicate |= (a.request_id == answer.request_id);
   if (!known || duplicate) {
@@ -196,6 +207,10 @@ void Arbiter::evaluate(int64_t now) {
     return;
   }
   if (reached_) return;
+  if (odometryStale(now)) {
+    onStaleOdometry(now);
+    return;
+  }
   if ((odometry_.position - *goal_).norm() <= params_.goal_tolerance_m &&
       (!hasCommitted() || committed_ends_at_goal_)) {
     reached_ = true;
@@ -314,7 +329,21 @@ bool Arbiter::verifyAnswer(const ModeAnswer& a, std::string* why) const {
       return fail("leaves the geofence");
     }
   }
-  if (grid_ && firstCollisionTime(*grid_, t, 0.0, t.duration()).has_value()) {
+  double clear_from = 0.0;
+  if (grid_ && isPointBlocked(*grid_, s0.position)) {
+    // A start inside the margin (e.g. stopped next to a newly mapped obstacle) may leave it, as
+    // the planners allow: through no occupied voxel, out of the margin near the start.
+    if (firstCollisionTime(*grid_, t, 0.0, t.duration(), CollisionLayer::kOccupied)) {
+      return fail("enters an obstacle");
+    }
+    while (clear_from < t.duration() && isPointBlocked(*grid_, t.position(clear_from))) {
+      clear_from += 0.01;
+    }
+    if ((t.position(clear_from) - s0.position).norm() > params_.start_escape_radius_m) {
+      return fail("does not leave the obstacle margin near its start");
+    }
+  }
+  if (grid_ && firstCollisionTime(*grid_, t, clear_from, t.duration()).has_value()) {
     return fail("collides with the arbiter's map");
   }
   return true;
@@ -398,6 +427,11 @@ void Arbiter::decide(int64_t now, bool by_deadline) {
     notes += "answer came after its start time; ";
     best = nullptr;
   }
+  if (best && odometryStale(now)) {
+    ++counters_.not_committed_stale_odom;
+    notes += "ODOMETRY is stale: answer not committed; ";
+    best = nullptr;
+  }
   if (best) {
     commit(best->trajectory, p.start_utime, best->mode, p.target_is_goal);
     last_failed_ = false;
@@ -424,6 +458,23 @@ void Arbiter::decide(int64_t now, bool by_deadline) {
   if (danger && !braking && (out_of_modes || by_deadline)) {
     commitStop(now, "no usable answer and danger ahead: " + notes, p.trigger);
   }
+}
+
+void Arbiter::onStaleOdometry(int64_t now) {
+  if (stopped_for_stale_odometry_) return;
+  stopped_for_stale_odometry_ = true;
+  ++counters_.stale_odometry;
+  const std::string why = "ODOMETRY is stale (" + std::to_string((now - odometry_utime_) / 1000) +
+                          " ms old): no planning until it returns";
+  // The stop continues the committed trajectory, not the stale odometry.
+  if (hasCommitted() && committed_mode_ != Mode::kStop && stateAt(now).velocity.norm() > 0.05) {
+    commitStop(now, why + "; stopping", Trigger::kNone);
+    return;
+  }
+  DecisionOut d;
+  d.outcome = Outcome::kRejected;
+  d.detail = why;
+  pushDecision(d);
 }
 
 void Arbiter::pushDecision(DecisionOut d) {

@@ -74,6 +74,8 @@ ArbiterParams loadArbiterParams(const Config& config) {
   p.stale_map_s = config.getDouble("arbiter.stale_map_s", 0.05, 60.0);
   p.stop_retry_period_s = config.getDouble("arbiter.stop_retry_period_s", 0.0, 10.0);
   p.emergency_horizon_s = config.getDouble("arbiter.emergency_horizon_s", 0.0, 60.0);
+  p.stale_odometry_s = config.getDouble("arbiter.stale_odometry_s", 0.02, 60.0);
+  p.start_escape_radius_m = config.getDouble("arbiter.start_escape_radius_m", 0.0, 5.0);
   p.inflation_m = config.getDouble("map.inflation_m", 0.0, 5.0);
   p.check_inflation_m = config.getDouble("arbiter.check_inflation_m", 0.0, 5.0);
   if (p.check_inflation_m > p.inflation_m) {

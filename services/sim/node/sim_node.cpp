@@ -93,12 +93,13 @@ mission_status_t SimNode::makeMissionStatus() const {
   return msg;
 }
 
-void SimNode::step() {
+void SimNode::step(bool publish_scans) {
   const sim::Simulator::StepResult r = sim_.step();
   ctx_.clock().observe(sim_.nowUtime());
   odometry_t odom = makeOdometry();
   ctx_.publish(channels::kOdometry, odom);
-  if (r.scan) {
+  if (r.scan && !publish_scans) ctx_.increment("scans_skipped_late");
+  if (r.scan && publish_scans) {
     pointcloud_t cloud = makePointcloud(sim_.lastScan());
     ctx_.publish(channels::kPointcloud, cloud);
   }

@@ -25,8 +25,9 @@ class SimNode {
   // Builds the world (throws ConfigError for bad config, std::runtime_error for bad options).
   SimNode(ServiceContext& ctx, const Config& config, const SimOptions& options);
 
-  // Advances simulated time by sim.step_s and publishes what is due.
-  void step();
+  // Advances simulated time by sim.step_s and publishes what is due; with publish_scans false
+  // a due POINTCLOUD is not sent (counted as scans_skipped_late).
+  void step(bool publish_scans = true);
   int64_t nowUtime() const { return sim_.nowUtime(); }
   const sim::MissionMetrics& metrics() const { return sim_.metrics(); }
   bool finished() const { return sim_.finished(); }

@@ -129,6 +129,7 @@ void SomNode::answer(const plan_request_t& req, plan_result_t& result, int64_t c
     ctx_.increment("plans_ok");
   } else {
     ctx_.increment("plans_failed");
+    ctx_.increment("failed_reason_" + std::to_string(result.reason));  // as FPM and EAM
     logInfo("request " + std::to_string(req.request_id) + " failed: " + result.detail);
   }
   ctx_.publish(channels::kPlanResult, result);

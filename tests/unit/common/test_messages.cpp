@@ -177,6 +177,7 @@ TEST(Messages, TrajectoryRequestResultRoundTrip) {
   mmh::plan_result_t res{};
   res.header = header(7);
   res.request_id = 11;
+  res.mode = mmh::plan_request_t::MODE_SOM;
   res.status = mmh::plan_result_t::STATUS_OK;
   res.trajectory = t;
   res.compute_us = 250;
@@ -212,4 +213,60 @@ TEST(Messages, TruncatedAndNegativeLengthBuffersFailToDecode) {
   m.encode(buf.data(), 0, static_cast<int>(buf.size()));
   mmh::pointcloud_t out;
   EXPECT_LT(out.decode(buf.data(), 0, static_cast<int>(buf.size()) - 7), 0);
+}
+
+TEST(Messages, ValidatorsRefuseAbsurdTimesModesAndIds) {
+  std::string why;
+  mmh::goal_t g{};
+  g.header = header(5);
+  g.goal_id = 1;
+  EXPECT_TRUE(mmh::validate(g, &why)) << why;
+  g.goal_id = -1;
+  EXPECT_FALSE(mmh::validate(g, &why));
+  EXPECT_NE(why.find("goal_id"), std::string::npos);
+  g.goal_id = 1;
+  g.header.utime = int64_t{1} << 62;  // would drag every receiver's clock 146,000 years ahead
+  EXPECT_FALSE(mmh::validate(g, &why));
+  EXPECT_NE(why.find("utime"), std::string::npos);
+  g.header.utime = mmh::kMaxUtime_us;
+  EXPECT_TRUE(mmh::validate(g, &why)) << why;
+
+  mmh::plan_result_t res{};
+  res.header = header(7);
+  res.mode = mmh::plan_request_t::MODE_EAM;
+  res.status = mmh::plan_result_t::STATUS_FAILED;
+  EXPECT_TRUE(mmh::validate(res, &why)) << why;
+  for (int8_t mode : {int8_t{0}, int8_t{mmh::plan_request_t::MODE_STOP}, int8_t{99}, int8_t{-1}}) {
+    res.mode = mode;
+    EXPECT_FALSE(mmh::validate(res, &why)) << int(mode);  // the arbiter indexes by mode
+  }
+  res.mode = mmh::plan_request_t::MODE_EAM;
+  res.reason = -4;
+  EXPECT_FALSE(mmh::validate(res, &why));
+
+  mmh::trajectory_t t = sampleTrajectory();
+  t.source_mode = 17;
+  EXPECT_FALSE(mmh::validate(t, &why));
+  t.source_mode = mmh::plan_request_t::MODE_STOP;
+  EXPECT_TRUE(mmh::validate(t, &why)) << why;
+  t.start_utime = int64_t{1} << 62;
+  EXPECT_FALSE(mmh::validate(t, &why));
+  t = sampleTrajectory();
+  t.pieces[0].duration_s = t.pieces[1].duration_s = 1900.0;  // each piece fine, 63 min in all
+  EXPECT_FALSE(mmh::validate(t, &why));
+  EXPECT_NE(why.find("hour"), std::string::npos);
+
+  mmh::plan_request_t r{};
+  r.header = header(6);
+  r.mode = mmh::plan_request_t::MODE_FPM;
+  EXPECT_TRUE(mmh::validate(r, &why)) << why;
+  r.deadline_utime = int64_t{1} << 62;
+  EXPECT_FALSE(mmh::validate(r, &why));
+
+  mmh::VoxelGrid grid(0.1, Eigen::Vector3i(0, 0, 0), Eigen::Vector3i(4, 4, 4));
+  mmh::local_map_t m = mmh::makeKeyframe(grid, 1);
+  m.header = header(8);
+  EXPECT_TRUE(mmh::validate(m, &why)) << why;
+  m.num_changed = -1;
+  EXPECT_FALSE(mmh::validate(m, &why));
 }

@@ -1,6 +1,8 @@
 // The LCM runtime over memq:// (in-process): decoding, validation, counters, prefixes, clock.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include "mmh/common/lcm_runtime.hpp"
 #include "mmh/goal_t.hpp"
 #include "mmh/odometry_t.hpp"
@@ -117,4 +119,46 @@ TEST(Runtime, LossSwitchDropsAShare) {
   EXPECT_GT(sink.goals.size(), 600u);
   EXPECT_LT(sink.goals.size(), 800u);
   EXPECT_EQ(sub.counter("test_dropped") + static_cast<int64_t>(sink.goals.size()), 1000);
+}
+
+TEST(Runtime, LossSwitchFromTheEnvironment) {
+  // How fault tests make separate processes lose LOCAL_MAP: the variable is read by every context.
+  setenv("MMH_TEST_INCOMING_LOSS", "GOAL=1.0,ODOMETRY=oops", 1);
+  auto lcm = mmh::openLcm("memq://");
+  mmh::ServiceContext pub(*lcm, "pub", "");
+  mmh::ServiceContext sub(*lcm, "sub", "");
+  unsetenv("MMH_TEST_INCOMING_LOSS");
+  Sink sink;
+  sub.subscribe(mmh::channels::kGoal, &Sink::onGoal, &sink);
+  sub.subscribe(mmh::channels::kOdometry, &Sink::onOdom, &sink);
+  for (int i = 1; i <= 20; ++i) {
+    mmh::goal_t g{};
+    g.header.utime = i;
+    pub.publish(mmh::channels::kGoal, g);
+    mmh::odometry_t o = odom(i);
+    pub.publish(mmh::channels::kOdometry, o);
+    drain(*lcm);
+  }
+  EXPECT_TRUE(sink.goals.empty());
+  EXPECT_EQ(sub.counter("test_dropped"), 20);
+  EXPECT_EQ(sink.odoms.size(), 20u);  // a malformed item is ignored (with a warning)
+}
+
+TEST(Runtime, AJumpFarAheadOfTheMessageClockIsRefused) {
+  auto lcm = mmh::openLcm("memq://");
+  mmh::ServiceContext pub(*lcm, "pub", "");
+  mmh::ServiceContext sub(*lcm, "sub", "");
+  Sink sink;
+  sub.subscribe(mmh::channels::kOdometry, &Sink::onOdom, &sink);
+  for (int64_t utime :
+       {int64_t{1'000'000}, int64_t{1'000'000} + 3600'000'000, int64_t{3'000'000}}) {
+    mmh::odometry_t o = odom(utime);
+    pub.publish(mmh::channels::kOdometry, o);
+    drain(*lcm);
+  }
+  // The hour-ahead message would have made every real message look an hour old.
+  ASSERT_EQ(sink.odoms.size(), 2u);
+  EXPECT_EQ(sink.odoms[1].header.utime, 3'000'000);
+  EXPECT_EQ(sub.counter("rejected_time_jump"), 1);
+  EXPECT_EQ(sub.clock().now(), 3'000'000);
 }

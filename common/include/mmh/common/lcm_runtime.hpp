@@ -85,8 +85,10 @@ class ServiceContext {
   MessageClock& clock() { return clock_; }
 
   // Delivers decoded and validated messages of `base_channel` to owner->method(msg). Messages
-  // that fail to decode, fail validation or go back in time are counted and logged, not
-  // delivered.
+  // that fail to decode, fail validation, go back in time or jump ahead of the message clock
+  // (more than kMaxClockLeadUs beyond the wall time since it last moved) are counted and logged,
+  // not delivered.
+  static constexpr int64_t kMaxClockLeadUs = 10'000'000;
   template <class Msg, class Owner>
   void subscribe(const std::string& base_channel, void (Owner::*method)(const Msg&), Owner* owner);
   // Same, for handlers that need the full channel name (e.g. a regex subscription over all
@@ -115,6 +117,8 @@ class ServiceContext {
   void publishHeartbeat();
 
   // Test-only loss switch: drop this fraction of the messages received on base_channel.
+  // Every context also reads $MMH_TEST_INCOMING_LOSS ("LOCAL_MAP=0.3[,CHANNEL=F...]", base channel
+  // names) at construction, so fault tests can make separate processes lossy; it logs a warning.
   void setIncomingLoss(const std::string& base_channel, double fraction, uint64_t seed = 1);
 
  private:
@@ -122,10 +126,12 @@ class ServiceContext {
   class TypedSubscription;
   bool admit(const std::string& channel, const std::string& source, int64_t utime, int64_t seq);
   bool dropForLoss(const std::string& channel);
+  void applyLossFromEnvironment();
 
   lcm::LCM& lcm_;
   std::string service_, prefix_, host_;
   MessageClock clock_;
+  int64_t clock_moved_wall_us_ = 0;  // wall time at which a received message last moved clock_
   std::map<std::string, int64_t> counters_;
   std::map<std::string, LogLimiter> limiters_;
   std::map<std::string, int64_t> publish_seq_;

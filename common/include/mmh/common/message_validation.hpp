@@ -25,6 +25,11 @@ constexpr int32_t kMaxWaypoints = 1024;
 constexpr int32_t kMaxHeartbeatCounters = 256;
 constexpr double kMaxAbsCoordinate_m = 1e6;
 constexpr size_t kMaxTextLength = 4096;  // free-text fields (detail, state_detail)
+// No trajectory of this system lasts an hour; checking a longer one would take the arbiter minutes.
+constexpr double kMaxTrajectoryDuration_s = 3600.0;
+// Message-clock times beyond this (about the year 5100, in microseconds since 1970) are absurd: one
+// such message would move a receiver's clock so far ahead that every input looked stale forever.
+constexpr int64_t kMaxUtime_us = int64_t{100'000'000} * 1'000'000'000;
 
 bool validate(const header_t& msg, std::string* why);
 bool validate(const odometry_t& msg, std::string* why);

@@ -76,6 +76,8 @@ struct ArbiterCounters {
   int rejected_answers = 0;  // OK answers that failed the arbiter's own checks
   int stops = 0;             // stopping trajectories committed
   int rejected_goals = 0;
+  int stale_odometry = 0;            // times ODOMETRY went stale (no planning until it returns)
+  int not_committed_stale_odom = 0;  // verified answers dropped because ODOMETRY was stale
 };
 
 class Arbiter {
@@ -108,6 +110,8 @@ class Arbiter {
   bool pending() const { return pending_.has_value(); }
   bool reached() const { return reached_; }
   bool mapStale(int64_t now) const;
+  // ODOMETRY received before, but older than stale_odometry_s at `now` (message clock).
+  bool odometryStale(int64_t now) const;
 
  private:
   struct Pending {
@@ -135,6 +139,7 @@ class Arbiter {
   bool collisionThreat(int64_t now, double* eta_s = nullptr) const;
   KinematicState stateAt(int64_t utime) const;
   void pushDecision(DecisionOut decision);
+  void onStaleOdometry(int64_t now);
 
   ArbiterParams params_;
   // Goal.
@@ -145,6 +150,8 @@ class Arbiter {
   // Inputs.
   bool have_odometry_ = false;
   KinematicState odometry_;
+  int64_t odometry_utime_ = 0;
+  bool stopped_for_stale_odometry_ = false;
   int64_t now_ = 0;
   const VoxelGrid* grid_ = nullptr;
   int64_t map_seq_ = 0, map_utime_ = 0;
