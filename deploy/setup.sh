@@ -15,7 +15,7 @@ packages=(
   build-essential cmake pkg-config git
   liblcm-dev liblcm-bin liblcm-java libjchart2d-java libglib2.0-dev
   libeigen3-dev liboctomap-dev libpcl-dev libnlopt-cxx-dev libyaml-cpp-dev
-  libgtest-dev libbenchmark-dev nlohmann-json3-dev default-jdk-headless
+  libgtest-dev libbenchmark-dev nlohmann-json3-dev default-jdk-headless default-jre
   iproute2 util-linux procps python3 python3-matplotlib python3-numpy python3-yaml openssh-client
   xvfb xauth x11-utils imagemagick clang libclang-rt-14-dev
 )
