@@ -51,6 +51,8 @@ for _ in $(seq 60); do
   rows=$(table_rows)
   [ "$rows" -ge 4 ] && break
 done
+# A few seconds more so the screenshot shows the rates too.
+if [ "$rows" -ge 4 ]; then sleep 3; import -window root "$shot"; rows=$(table_rows); fi
 
 echo "--- lcm-spy output"; cat "$work/spy.log"
 echo "screenshot: $shot"
