@@ -31,7 +31,7 @@ goal=10,0,1.2
 checks=()
 case "$scenario" in
   kill-som)
-    # SOM first on every replan (FPM never), so that the dead mode is asked while it is dead.
+    # SOM first on every replan (FPM never), so that the goal change asks the dead mode.
     sed 's/^\(  policy:\).*/\1 mmh-no-awareness/' "$root/deploy/config/default.yaml" >"$run/config.yaml"
     export MMH_CONFIG=$run/config.yaml
     checks=(--expect-counter mmh-arbiter:unanswered_requests
@@ -66,7 +66,13 @@ case "$scenario" in
   kill-som)
     echo "SIGKILL mmh-som (pid $(pid_of mmh-som))"
     kill -KILL "$(pid_of mmh-som)"
-    wait_flown 12  # past the halfway replan, which asked the dead SOM
+    # The same goal under a new id is a goal change: the arbiter asks SOM at once, whatever the
+    # forest made of the flight so far (collision replans may reach the goal without a halfway
+    # replan). Restart SOM only once the arbiter has noticed that it did not answer.
+    "$launch/goal.sh" stop >/dev/null
+    "$launch/goal.sh" start -- --goal "$goal" --id 2 >/dev/null
+    "$build/tests/mmh-fault-log-check" "$run/flight.lcm" --wait-status "no answer by the deadline" \
+      --timeout 60
     "$launch/som.sh" start
     ;;
   restart-mapping)

@@ -3,7 +3,8 @@
 // planning mode's trajectory is committed while ODOMETRY is stale, the mission was reached without
 // collision, and the expected ARBITER_STATUS details and HEARTBEAT counters appeared.
 // With --wait-distance D it instead waits (re-reading the growing log) until MISSION_STATUS shows
-// D metres flown, so that a test injects its fault mid-flight whatever the machine's load.
+// D metres flown, so that a test injects its fault mid-flight whatever the machine's load; with
+// --wait-status TEXT, until some ARBITER_STATUS detail contains TEXT (the fault was noticed).
 #include <lcm/lcm-cpp.hpp>
 
 #include <algorithm>
@@ -34,6 +35,7 @@ struct Options {
   double jump_position_m = 0.01;
   double jump_velocity_mps = 0.05;
   double wait_distance_m = -1.0;  // >= 0: only wait until this distance was flown
+  std::string wait_status;        // not empty: only wait until an ARBITER_STATUS says this
   double wait_timeout_s = 90.0;
 };
 
@@ -50,7 +52,8 @@ bool endsWith(const std::string& s, const std::string& suffix) {
 int usage() {
   std::cerr << "usage: mmh-fault-log-check LOG [--expect-status TEXT]... "
                "[--expect-counter SERVICE:NAME]... [--stale-odometry-s S]\n"
-               "       mmh-fault-log-check LOG --wait-distance M [--timeout S]\n";
+               "       mmh-fault-log-check LOG --wait-distance M [--timeout S]\n"
+               "       mmh-fault-log-check LOG --wait-status TEXT [--timeout S]\n";
   return 2;
 }
 
@@ -66,20 +69,54 @@ double distanceFlown(const std::string& path) {
   return d;
 }
 
-int waitForDistance(const Options& o) {
+// Whether some ARBITER_STATUS detail in the log so far contains `text`.
+bool statusSeen(const std::string& path, const std::string& text) {
+  lcm::LogFile log(path, "r");
+  if (!log.good()) return false;
+  while (const lcm::LogEvent* e = log.readNextEvent()) {
+    mmh::arbiter_status_t m;
+    if (endsWith(e->channel, "ARBITER_STATUS") && decode(*e, &m) &&
+        m.detail.find(text) != std::string::npos)
+      return true;
+  }
+  return false;
+}
+
+// Re-reads the growing log until `done` says so or the timeout passes.
+template <class Done>
+int waitFor(const Options& o, Done done, const std::string& what) {
   const auto until =
       std::chrono::steady_clock::now() + std::chrono::duration<double>(o.wait_timeout_s);
   while (std::chrono::steady_clock::now() < until) {
-    const double d = distanceFlown(o.log);
-    if (d >= o.wait_distance_m) {
-      std::cout << "flown " << d << " m\n";
-      return 0;
-    }
+    if (done()) return 0;
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
   }
-  std::cout << "FAIL: the vehicle did not fly " << o.wait_distance_m << " m within "
-            << o.wait_timeout_s << " s\n";
+  std::cout << "FAIL: " << what << " within " << o.wait_timeout_s << " s\n";
   return 1;
+}
+
+int waitForDistance(const Options& o) {
+  const std::string what = "the vehicle did not fly " + std::to_string(o.wait_distance_m) + " m";
+  return waitFor(
+      o,
+      [&] {
+        const double d = distanceFlown(o.log);
+        if (d < o.wait_distance_m) return false;
+        std::cout << "flown " << d << " m\n";
+        return true;
+      },
+      what);
+}
+
+int waitForStatus(const Options& o) {
+  return waitFor(
+      o,
+      [&] {
+        if (!statusSeen(o.log, o.wait_status)) return false;
+        std::cout << "ARBITER_STATUS says \"" << o.wait_status << "\"\n";
+        return true;
+      },
+      "no ARBITER_STATUS said \"" + o.wait_status + "\"");
 }
 
 }  // namespace
@@ -96,6 +133,8 @@ int main(int argc, char** argv) {
       o.stale_odometry_s = std::atof(argv[++i]);
     } else if (a == "--wait-distance" && i + 1 < argc) {
       o.wait_distance_m = std::atof(argv[++i]);
+    } else if (a == "--wait-status" && i + 1 < argc) {
+      o.wait_status = argv[++i];
     } else if (a == "--timeout" && i + 1 < argc) {
       o.wait_timeout_s = std::atof(argv[++i]);
     } else if (!a.empty() && a[0] != '-' && o.log.empty()) {
@@ -106,6 +145,7 @@ int main(int argc, char** argv) {
   }
   if (o.log.empty()) return usage();
   if (o.wait_distance_m >= 0.0) return waitForDistance(o);
+  if (!o.wait_status.empty()) return waitForStatus(o);
   lcm::LogFile log(o.log, "r");
   if (!log.good()) {
     std::cerr << "mmh-fault-log-check: cannot read " << o.log << "\n";
