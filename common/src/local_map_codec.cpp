@@ -79,11 +79,11 @@ local_map_t makeKeyframe(const VoxelGrid& grid, int64_t map_seq) {
 }
 
 local_map_t makeDelta(const VoxelGrid& grid, int64_t map_seq,
-                      const std::vector<CellChange>& sorted_changes) {
+                      const std::vector<CellChange>& sorted_changes, int64_t base_seq) {
   local_map_t msg{};
   fillGeometry(grid, map_seq, msg);
   msg.kind = local_map_t::KIND_DELTA;
-  msg.base_seq = map_seq - 1;
+  msg.base_seq = base_seq < 0 ? map_seq - 1 : base_seq;
   msg.runs = encodeRuns(sorted_changes);
   msg.num_bytes = static_cast<int32_t>(msg.runs.size());
   msg.num_changed = static_cast<int32_t>(sorted_changes.size());
@@ -111,8 +111,8 @@ bool validateLocalMap(const local_map_t& msg, std::string* error) {
   if (msg.num_bytes < 0 || static_cast<size_t>(msg.num_bytes) != msg.runs.size())
     return fail("num_bytes disagrees with the data");
   if (msg.map_seq <= 0) return fail("map_seq must be positive");
-  if (msg.kind == local_map_t::KIND_DELTA && msg.base_seq != msg.map_seq - 1)
-    return fail("delta base_seq must be map_seq - 1");
+  if (msg.kind == local_map_t::KIND_DELTA && (msg.base_seq < 0 || msg.base_seq >= msg.map_seq))
+    return fail("delta base_seq must be in [0, map_seq - 1]");
   return true;
 }
 
@@ -188,14 +188,19 @@ LocalMapReceiver::Result LocalMapReceiver::apply(const local_map_t& msg, std::st
     if (reason) *reason = "delta before a keyframe";
     return Result::kWaitingForKeyframe;
   }
-  if (msg.base_seq != last_seq_) {
+  // A delta holds every cell changed since its base (the sender repeats the last few deltas'
+  // cells): any applied map from base_seq on is enough, so losing fewer messages in a row than
+  // the sender repeats costs nothing.
+  if (msg.base_seq > last_seq_) {
     synced_ = false;
     ++gaps_;
     if (reason)
-      *reason = "gap: expected base " + std::to_string(last_seq_) + ", got " +
-                std::to_string(msg.base_seq);
+      *reason = "gap: have map " + std::to_string(last_seq_) + ", delta " +
+                std::to_string(msg.map_seq) + " needs base " + std::to_string(msg.base_seq) +
+                " or later";
     return Result::kGap;
   }
+  if (msg.map_seq != last_seq_ + 1) ++bridged_;
   if (size != grid_.size() || std::abs(msg.resolution_m - grid_.resolution()) > 1e-9) {
     synced_ = false;
     if (reason) *reason = "delta changes the window geometry";

@@ -55,15 +55,9 @@ void ArbiterNode::onAwareness(const awareness_t& msg) {
 }
 
 void ArbiterNode::onLocalMap(const local_map_t& msg) {
-  std::string why;
-  const LocalMapReceiver::Result r = map_.apply(msg, &why);
-  if (r == LocalMapReceiver::Result::kApplied) {
+  if (applyAndCount(map_, msg, ctx_) == LocalMapReceiver::Result::kApplied) {
     arbiter_.onMapUpdated(map_.grid(), map_.mapSeq(), map_.mapUtime(), ctx_.clock().now());
     flush();
-  } else if (r == LocalMapReceiver::Result::kGap) {
-    ctx_.increment("map_gap");
-  } else if (r == LocalMapReceiver::Result::kRejected) {
-    ctx_.reject("rejected_map", "LOCAL_MAP: " + why);
   }
 }
 

@@ -7,6 +7,7 @@
 #include "mmh/common/config.hpp"
 #include "mmh/common/lcm_runtime.hpp"
 #include "mmh/common/local_map_codec.hpp"
+#include "mmh/common/local_map_counters.hpp"
 #include "mmh/goal_t.hpp"
 #include "mmh/local_map_t.hpp"
 #include "mmh/odometry_t.hpp"

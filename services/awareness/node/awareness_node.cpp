@@ -16,24 +16,8 @@ AwarenessNode::AwarenessNode(ServiceContext& ctx, const Config& config)
 }
 
 void AwarenessNode::onLocalMap(const local_map_t& msg) {
-  std::string reason;
-  switch (receiver_.apply(msg, &reason)) {
-    case LocalMapReceiver::Result::kApplied:
-      ctx_.increment("map_applied");
-      evaluateAndPublish("map");
-      return;
-    case LocalMapReceiver::Result::kWaitingForKeyframe:
-      ctx_.increment("map_waiting_for_keyframe");
-      return;
-    case LocalMapReceiver::Result::kGap:
-      ctx_.increment("map_gap");
-      return;
-    case LocalMapReceiver::Result::kStale:
-      ctx_.increment("map_stale");
-      return;
-    case LocalMapReceiver::Result::kRejected:
-      ctx_.reject("map_rejected", "LOCAL_MAP " + std::to_string(msg.map_seq) + ": " + reason);
-      return;
+  if (applyAndCount(receiver_, msg, ctx_) == LocalMapReceiver::Result::kApplied) {
+    evaluateAndPublish("map");
   }
 }
 

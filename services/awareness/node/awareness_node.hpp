@@ -9,6 +9,7 @@
 #include "mmh/awareness/awareness_params.hpp"
 #include "mmh/common/lcm_runtime.hpp"
 #include "mmh/common/local_map_codec.hpp"
+#include "mmh/common/local_map_counters.hpp"
 #include "mmh/goal_t.hpp"
 #include "mmh/local_map_t.hpp"
 #include "mmh/odometry_t.hpp"

@@ -13,21 +13,9 @@ EamNode::EamNode(ServiceContext& ctx, const Config& config)
 }
 
 void EamNode::onLocalMap(const local_map_t& msg) {
-  std::string why;
-  switch (map_.apply(msg, &why)) {
-    case LocalMapReceiver::Result::kApplied:
-      if (map_.lastWasKeyframe()) planner_.prepare(map_.grid());  // cheap unless the size changed
-      break;
-    case LocalMapReceiver::Result::kGap:
-      ctx_.reject("map_gaps", "LOCAL_MAP gap: " + why);
-      break;
-    case LocalMapReceiver::Result::kRejected:
-      ctx_.reject("rejected_map", "LOCAL_MAP rejected: " + why);
-      break;
-    case LocalMapReceiver::Result::kWaitingForKeyframe:
-    case LocalMapReceiver::Result::kStale:
-      ctx_.increment("map_ignored");
-      break;
+  if (applyAndCount(map_, msg, ctx_) == LocalMapReceiver::Result::kApplied &&
+      map_.lastWasKeyframe()) {
+    planner_.prepare(map_.grid());  // cheap unless the size changed
   }
 }
 

@@ -5,6 +5,7 @@
 #include "mmh/common/config.hpp"
 #include "mmh/common/lcm_runtime.hpp"
 #include "mmh/common/local_map_codec.hpp"
+#include "mmh/common/local_map_counters.hpp"
 #include "mmh/eam/planner.hpp"
 #include "mmh/local_map_t.hpp"
 #include "mmh/plan_request_t.hpp"

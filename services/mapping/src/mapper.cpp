@@ -1,5 +1,6 @@
 #include "mmh/mapping/mapper.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace mmh::mapping {
@@ -34,12 +35,12 @@ local_map_t keyframeOf(const OccupancyMap& map, int64_t map_seq) {
   return msg;
 }
 
-local_map_t deltaOf(const OccupancyMap& map, int64_t map_seq,
+local_map_t deltaOf(const OccupancyMap& map, int64_t map_seq, int64_t base_seq,
                     const std::vector<CellChange>& changes) {
   local_map_t msg{};
   fillGeometry(map, map_seq, msg);
   msg.kind = local_map_t::KIND_DELTA;
-  msg.base_seq = map_seq - 1;
+  msg.base_seq = base_seq;
   msg.runs = encodeRuns(changes);
   msg.num_bytes = static_cast<int32_t>(msg.runs.size());
   msg.num_changed = static_cast<int32_t>(changes.size());
@@ -68,17 +69,38 @@ Mapper::Result Mapper::processScan(const ScanInput& scan, int64_t utime) {
   ++map_seq_;
   if (result.keyframe) {
     map_.clearChanges();
+    recent_changes_.clear();
     result.map = keyframeOf(map_, map_seq_);
+    last_keyframe_seq_ = map_seq_;
     last_keyframe_utime_ = utime;
     keyframe_requested_ = false;
     // Once per keyframe: bring the tree up to date and free the memory the window left behind.
     map_.flush();
     map_.pruneOutsideWindow();
   } else {
-    result.map = deltaOf(map_, map_seq_, map_.takeChanges());
+    result.map = nextDelta();
   }
   result.map.header.utime = utime;
   return result;
+}
+
+local_map_t Mapper::nextDelta() {
+  // This delta's cells and those of the deltas before it, up to delta_repeat in all and never
+  // past the last keyframe, each with its current state: a receiver that lost fewer messages in
+  // a row applies it exactly.
+  recent_changes_.push_back(map_.takeChangedCells());
+  while (static_cast<int>(recent_changes_.size()) > params_.delta_repeat) {
+    recent_changes_.pop_front();
+  }
+  const int64_t base_seq =
+      std::max(last_keyframe_seq_, map_seq_ - static_cast<int64_t>(recent_changes_.size()));
+  if (recent_changes_.size() == 1) {
+    return deltaOf(map_, map_seq_, base_seq, map_.windowChangesOf(recent_changes_.back()));
+  }
+  std::vector<int64_t> cells;
+  for (const auto& changed : recent_changes_)
+    cells.insert(cells.end(), changed.begin(), changed.end());
+  return deltaOf(map_, map_seq_, base_seq, map_.windowChangesOf(cells));
 }
 
 }  // namespace mmh::mapping

@@ -7,6 +7,7 @@ MappingParams loadMappingParams(const Config& c) {
   p.resolution_m = c.getDouble("map.resolution_m", 0.02, 1.0);
   p.window_size_m = c.getVector3("map.window_size_m", 1.0, 200.0);
   p.keyframe_period_s = c.getDouble("mapping.keyframe_period_s", 0.05, 60.0);
+  p.delta_repeat = c.getInt("mapping.delta_repeat", 1, 16);
   p.window_recenter_m = c.getDouble("mapping.window_recenter_m", 0.0, 50.0);
   p.max_range_m = c.getDouble("mapping.max_range_m", 0.1, 100.0);
   p.max_points = c.getInt("mapping.max_points", 1, 4'000'000);

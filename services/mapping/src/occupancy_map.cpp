@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <utility>
 
 namespace mmh::mapping {
 namespace {
@@ -482,13 +483,20 @@ InsertStats OccupancyMap::insert(const FilteredScan& scan) {
 }
 
 std::vector<CellChange> OccupancyMap::takeChanges() {
+  return windowChangesOf(takeChangedCells());
+}
+
+std::vector<int64_t> OccupancyMap::takeChangedCells() {
+  return std::exchange(changed_, {});
+}
+
+std::vector<CellChange> OccupancyMap::windowChangesOf(const std::vector<int64_t>& cells) const {
   std::vector<int64_t> linear;
-  linear.reserve(changed_.size());
-  for (int64_t packed : changed_) {
+  linear.reserve(cells.size());
+  for (int64_t packed : cells) {
     const Eigen::Vector3i g = unpack(packed);
     if (inWindow(g)) linear.push_back(windowIndex(g));
   }
-  changed_.clear();
   std::sort(linear.begin(), linear.end());
   linear.erase(std::unique(linear.begin(), linear.end()), linear.end());
   std::vector<CellChange> out;

@@ -47,24 +47,9 @@ SomNode::SomNode(ServiceContext& ctx, const Config& config)
 }
 
 void SomNode::onLocalMap(const local_map_t& msg) {
-  std::string reason;
-  switch (receiver_.apply(msg, &reason)) {
-    case LocalMapReceiver::Result::kApplied:
-      ctx_.increment("maps_applied");
-      if (receiver_.lastWasKeyframe()) planner_.prepare(receiver_.grid());  // cheap unless resized
-      break;
-    case LocalMapReceiver::Result::kGap:
-      ctx_.increment("map_gap");
-      break;
-    case LocalMapReceiver::Result::kWaitingForKeyframe:
-      ctx_.increment("map_waiting_for_keyframe");
-      break;
-    case LocalMapReceiver::Result::kStale:
-      ctx_.increment("map_stale");
-      break;
-    case LocalMapReceiver::Result::kRejected:
-      ctx_.reject("map_rejected", "LOCAL_MAP: " + reason);
-      break;
+  if (applyAndCount(receiver_, msg, ctx_) == LocalMapReceiver::Result::kApplied &&
+      receiver_.lastWasKeyframe()) {
+    planner_.prepare(receiver_.grid());  // cheap unless resized
   }
 }
 

@@ -80,6 +80,29 @@ TEST(LocalMapCodec, GapIsDetectedAndKeyframeRecovers) {
   EXPECT_TRUE(rx.hasMap());
 }
 
+TEST(LocalMapCodec, ADeltaAppliesOnAnyMapFromItsBase) {
+  VoxelGrid sender = randomGrid(Vector3i(0, 0, 0), 4);
+  LocalMapReceiver rx;
+  ASSERT_EQ(rx.apply(mmh::makeKeyframe(sender, 1)), LocalMapReceiver::Result::kApplied);
+  ASSERT_EQ(rx.apply(mmh::makeDelta(sender, 2, {})), LocalMapReceiver::Result::kApplied);
+  // Map 3 was lost; map 4 holds every change since map 2, so it applies on map 2.
+  sender.set(Vector3i(1, 1, 1), Occupancy::kOccupied);
+  const int64_t cell = sender.linearIndex(Vector3i(1, 1, 1));
+  ASSERT_EQ(rx.apply(mmh::makeDelta(sender, 4, {{cell, Occupancy::kOccupied}}, 2)),
+            LocalMapReceiver::Result::kApplied);
+  EXPECT_TRUE(sameCells(rx.grid(), sender));
+  EXPECT_EQ(rx.mapSeq(), 4);
+  EXPECT_EQ(rx.lossesBridged(), 1);
+  EXPECT_EQ(rx.gapsDetected(), 0);
+  // A delta whose base is newer than the map held is a gap.
+  EXPECT_EQ(rx.apply(mmh::makeDelta(sender, 7, {}, 5)), LocalMapReceiver::Result::kGap);
+  // A base at or after map_seq is malformed.
+  mmh::local_map_t bad = mmh::makeDelta(sender, 8, {}, 8);
+  std::string why;
+  EXPECT_FALSE(mmh::validateLocalMap(bad, &why));
+  EXPECT_NE(why.find("base_seq"), std::string::npos);
+}
+
 TEST(LocalMapCodec, MalformedMessagesAreRejectedAndChangeNothing) {
   VoxelGrid sender = randomGrid(Vector3i(0, 0, 0), 5);
   LocalMapReceiver rx;

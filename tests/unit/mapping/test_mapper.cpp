@@ -2,6 +2,8 @@
 // detected and healed by the next keyframe, deltas stay small in steady flight.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "mmh/common/local_map_codec.hpp"
 #include "mmh/mapping/mapper.hpp"
 #include "scan_helpers.hpp"
@@ -67,6 +69,7 @@ TEST(Mapper, KeyframesAndDeltasRebuildTheSameMap) {
 TEST(Mapper, AGapIsDetectedAndTheNextKeyframeHealsIt) {
   Flight flight;
   mmh::mapping::MappingParams params;
+  params.delta_repeat = 1;  // every delta only from the previous message: one loss is a gap
   mmh::mapping::Mapper mapper(params);
   mmh::LocalMapReceiver receiver;
   std::vector<Result> results;
@@ -87,6 +90,40 @@ TEST(Mapper, AGapIsDetectedAndTheNextKeyframeHealsIt) {
   EXPECT_EQ(results[4], Result::kGap);                 // k = 5 after the lost k = 4
   EXPECT_EQ(results[5], Result::kWaitingForKeyframe);  // until the keyframe at k = 15
   EXPECT_EQ(results.back(), Result::kApplied);
+  EXPECT_EQ(receiver.gapsDetected(), 1);
+}
+
+TEST(Mapper, LossesShorterThanTheDeltaRepeatAreBridgedExactly) {
+  Flight flight;
+  mmh::mapping::MappingParams params;
+  params.delta_repeat = 3;
+  mmh::mapping::Mapper mapper(params);
+  mmh::LocalMapReceiver receiver;
+  // Lost on the network: one message (k = 4), two in a row (7, 8), then three in a row (11-13).
+  const std::vector<size_t> lost{4, 7, 8, 11, 12, 13};
+  std::vector<std::pair<size_t, Result>> results;
+  for (size_t k = 0; k < flight.scans.size() && k < 16; ++k) {
+    const auto& scan = flight.scans[k];
+    mapper.setVehiclePosition(scan.position);
+    const auto r = mapper.processScan(mmh::test::inputOf(scan), kT0 + k * kFrameUs);
+    EXPECT_EQ(r.keyframe, k == 0 || k == 15) << k;
+    if (std::find(lost.begin(), lost.end(), k) != lost.end()) continue;
+    const Result applied = receiver.apply(r.map);
+    results.emplace_back(k, applied);
+    if (applied == Result::kApplied) {
+      // Exactly the sender's window, also right after the losses.
+      ASSERT_EQ(receiver.grid().originIndex(), mapper.map().windowOrigin()) << k;
+      ASSERT_EQ(receiver.grid().rawCells(), mapper.map().windowStates()) << k;
+    }
+  }
+  ASSERT_EQ(results.size(), 10u);
+  for (const auto& [k, result] : results) {
+    if (k == 14)
+      EXPECT_EQ(result, Result::kGap) << "three lost in a row are more than the repeat";
+    else
+      EXPECT_EQ(result, Result::kApplied) << k;  // k = 15 is the keyframe that heals the gap
+  }
+  EXPECT_EQ(receiver.lossesBridged(), 2);  // k = 5 and k = 9
   EXPECT_EQ(receiver.gapsDetected(), 1);
 }
 

@@ -21,10 +21,10 @@ std::vector<uint8_t> encodeRuns(const std::vector<CellChange>& sorted_changes);
 // Keyframe of the whole window (every known cell).
 local_map_t makeKeyframe(const VoxelGrid& grid, int64_t map_seq);
 
-// Delta from map_seq - 1 to map_seq: move the window to grid's origin, then apply `changes`
-// (indices in the new window, sorted).
+// Delta from base_seq (default map_seq - 1) to map_seq: move the window to grid's origin, then
+// apply `changes` (indices in the new window, sorted): every cell that changed since base_seq.
 local_map_t makeDelta(const VoxelGrid& grid, int64_t map_seq,
-                      const std::vector<CellChange>& sorted_changes);
+                      const std::vector<CellChange>& sorted_changes, int64_t base_seq = -1);
 
 // Decodes a message's runs into `grid` (whose geometry must already match); false with a reason
 // if the runs are malformed or leave the window. Cells written are appended to `written` if given.
@@ -40,7 +40,7 @@ class LocalMapReceiver {
   enum class Result {
     kApplied,             // the grid now equals the sender's window at msg.map_seq
     kWaitingForKeyframe,  // a delta arrived before any keyframe or after a gap: ignored
-    kGap,                 // a delta's base_seq is not the last applied map_seq: waiting now
+    kGap,                 // a delta's base_seq is newer than the last applied map: waiting now
     kStale,               // older than or equal to what is applied: ignored
     kRejected,            // malformed message: ignored, state unchanged
   };
@@ -55,6 +55,8 @@ class LocalMapReceiver {
   int64_t mapSeq() const { return last_seq_; }
   int64_t mapUtime() const { return last_utime_; }
   int64_t gapsDetected() const { return gaps_; }
+  // Deltas applied exactly although messages before them were lost (within the sender's repeat).
+  int64_t lossesBridged() const { return bridged_; }
   // Cells changed by the last applied message (empty after a keyframe: everything changed).
   const std::vector<int64_t>& lastChangedCells() const { return last_changed_; }
   bool lastWasKeyframe() const { return last_was_keyframe_; }
@@ -67,6 +69,7 @@ class LocalMapReceiver {
   int64_t last_seq_ = 0;
   int64_t last_utime_ = 0;
   int64_t gaps_ = 0;
+  int64_t bridged_ = 0;
   std::vector<int64_t> last_changed_;
   bool last_was_keyframe_ = false;
 };

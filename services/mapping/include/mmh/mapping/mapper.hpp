@@ -1,11 +1,14 @@
 // The mapping pipeline without LCM: scan -> filter (scan_filter.hpp) -> window placement and
 // insertion into the OccupancyMap -> the LOCAL_MAP message, a keyframe (whole window) at least
-// every keyframe_period_s and a delta (cells changed since the previous message) otherwise.
+// every keyframe_period_s and a delta otherwise: the cells changed since the previous message,
+// and those of the delta_repeat - 1 deltas before it, so that a lost message costs nothing.
 #pragma once
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <deque>
 #include <string>
+#include <vector>
 
 #include "mmh/local_map_t.hpp"
 #include "mmh/mapping/mapping_params.hpp"
@@ -48,8 +51,12 @@ class Mapper {
   FilteredScan filtered_;
   Eigen::Vector3d vehicle_ = Eigen::Vector3d::Zero();
   bool have_vehicle_ = false;
+  local_map_t nextDelta();
+
   int64_t map_seq_ = 0;
+  int64_t last_keyframe_seq_ = 0;
   int64_t last_keyframe_utime_ = 0;
+  std::deque<std::vector<int64_t>> recent_changes_;  // changed cells of the last deltas
   bool keyframe_requested_ = true;
 };
 

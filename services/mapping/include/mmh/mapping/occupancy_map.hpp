@@ -58,6 +58,11 @@ class OccupancyMap {
   // LOCAL_MAP delta. Clears the list.
   std::vector<CellChange> takeChanges();
   void clearChanges() { changed_.clear(); }
+  // The same in two steps, for deltas that repeat earlier changes: the changed cells (global
+  // cell keys, unsorted, possibly repeated), cleared; and the current window state of any such
+  // cells that are inside the window, sorted by window index.
+  std::vector<int64_t> takeChangedCells();
+  std::vector<CellChange> windowChangesOf(const std::vector<int64_t>& cells) const;
 
   bool hasWindow() const { return has_window_; }
   // The published window: cell (0,0,0) is global voxel windowOrigin(); states (unknown / free /
