@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "mmh/common/collision_check.hpp"
 #include "mmh/common/narrow_space.hpp"
 #include "mmh/eam/bspline_optimizer.hpp"
 #include "mmh/eam/collision_pairs.hpp"
@@ -203,12 +204,13 @@ std::vector<CollisionStretch> mergeStretches(const std::vector<CollisionStretch>
 struct Planner::Attempt {
   UniformBspline spline;
   PairSet pairs;
-  std::vector<char> free_mask;  // control points within window_margin_s of a collision
-  double boost = 1.0;           // extra factor on the collision weight
-  int round = 0;                // optimisations run in this attempt
-  int refines = 0;              // time re-allocations in this attempt
-  double check_step = 0.0;      // collision check sample spacing (m)
-  bool restart = false;         // first round: one guide for all collisions, slots avoided
+  std::vector<char> free_mask;       // control points within window_margin_s of a collision
+  double boost = 1.0;                // extra factor on the collision weight
+  int round = 0;                     // optimisations run in this attempt
+  int refines = 0;                   // time re-allocations in this attempt
+  double check_step = 0.0;           // collision check sample spacing (m)
+  bool restart = false;              // first round: one guide for all collisions, slots avoided
+  double escape_min_distance = 0.0;  // mmh::escapeMinDistance of the start
   // Time re-allocations of a collision-free curve follow one another without an optimisation
   // in between: each is applied to the curve as it was before the first of them, with the
   // product of their ratios, so that their start blends do not stack up (see refineFromBase).
@@ -338,7 +340,8 @@ Planner::RoundsOutcome Planner::runRounds(const VoxelGrid& grid, const PlanReque
   RoundsOutcome outcome = RoundsOutcome::kStillColliding;
   for (;;) {
     const std::vector<CollisionStretch> stretches = timed(&r.stats.check_us, [&] {
-      return findCollisionStretches(at.spline, grid, P.start_escape_radius_m, at.check_step);
+      return findCollisionStretches(at.spline, grid, P.start_escape_radius_m, at.check_step,
+                                    at.escape_min_distance);
     });
     bool feasibility_round = false;
     if (stretches.empty()) {
@@ -455,7 +458,8 @@ Planner::RoundsOutcome Planner::runRounds(const VoxelGrid& grid, const PlanReque
       // hugs the obstacles: give those grazes their pairs now (from the same guides) rather
       // than in another round.
       const std::vector<CollisionStretch> grazes = timed(&r.stats.check_us, [&] {
-        return findCollisionStretches(at.spline, grid, P.start_escape_radius_m, at.check_step);
+        return findCollisionStretches(at.spline, grid, P.start_escape_radius_m, at.check_step,
+                                      at.escape_min_distance);
       });
       for (const CollisionStretch& g : grazes) {
         for (const GuideSpan& span : round_guides) {
@@ -554,6 +558,8 @@ PlanResult Planner::plan(const VoxelGrid& grid, const PlanRequest& req) {
     at.free_mask.assign(initial.numControlPoints(), 0);
     at.check_step = kCheckStep * grid.resolution();
     at.restart = attempt > 0;
+    at.escape_min_distance =
+        escapeMinDistance(grid, req.start.position, P.start_escape_clearance_m);
     r.stats.restarts = attempt;
     r.guide_paths.clear();
     for (;;) {

@@ -313,6 +313,31 @@ TEST(EamPlanner, EnclosedTargetHasNoPath) {
   EXPECT_EQ(r.reason, FailReason::kNoPath);
 }
 
+TEST(EamVerification, AStartInTheMarginLeavesItOutwardsOnly) {
+  // Start 0.2 m from a pillar's surface (inside the 0.3 m margin). Leaving the margin straight
+  // away is accepted; first sliding to 0.05 m from the surface (no occupied voxel touched, all
+  // within start_escape_radius_m) is not: accepted, such escapes let a vehicle next to an
+  // obstacle be re-planned along it, nearer each time, until it touched it.
+  mmh::VoxelGrid g = eam_test::freeGrid();
+  eam_test::addPillar(g, 1.0, 0.55, 0.35);
+  const auto p = params();
+  mmh::KinematicState start;
+  start.position = Vector3d(1.0, 0.0, 1.2);
+  ASSERT_TRUE(g.isBlockedPoint(start.position));
+  const Vector3d deeper(1.12, 0.17, 1.2), out(1.0, -0.25, 1.2);
+  ASSERT_FALSE(g.isOccupiedPoint(deeper));
+  const mmh::Trajectory away = eam_test::straightLine(start.position, out, 1.0);
+  EXPECT_TRUE(mmh::eam::verifyTrajectory(away, g, start, out, p).ok);
+  std::vector<mmh::Piece> pieces = eam_test::straightLine(start.position, deeper, 1.0).pieces();
+  pieces.push_back(eam_test::straightLine(deeper, out, 1.0).pieces().front());
+  const mmh::Trajectory sliding(pieces);
+  ASSERT_EQ(eam_test::firstBlockedTime(g, sliding, /*occupied_only=*/true), -1.0);
+  const mmh::eam::Verification v = mmh::eam::verifyTrajectory(sliding, g, start, out, p);
+  EXPECT_FALSE(v.ok);
+  EXPECT_TRUE(v.collision);
+  EXPECT_NE(v.why.find("deeper"), std::string::npos) << v.why;
+}
+
 TEST(EamVerification, RejectsCollisionsLimitsAndWrongEnds) {
   mmh::VoxelGrid g = eam_test::freeGrid();
   eam_test::addPillar(g, 5.0, 0.0, 0.5);
