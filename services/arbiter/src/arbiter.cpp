@@ -383,8 +383,9 @@ void Arbiter::commitStop(int64_t now, const std::string& why, Trigger trigger) {
   const int64_t start = now + static_cast<int64_t>(params_.replan_lead_s * 1e6);
   const Trajectory stop =
       hasCommitted()
-          ? makeStoppingTrajectory(committed_, (start - committed_start_) * kUs,
-                                   params_.max_acc_mps2, params_.max_vel_mps)
+          ? chooseStoppingTrajectory(grid_, committed_, (start - committed_start_) * kUs,
+                                     params_.max_acc_mps2, params_.max_vel_mps,
+                                     params_.check_inflation_m)
           : makeStoppingTrajectory(stateAt(start), params_.max_acc_mps2, params_.max_vel_mps);
   commit(stop, start, Mode::kStop, false);
   // Braking is not a plan: keep trying the modes, from the next map on.
