@@ -187,6 +187,25 @@ TEST(EamPlanner, PillarCloseAheadAtCruiseSpeedStaysWithinTheLimits) {
   }
 }
 
+TEST(EamPlanner, DetourThroughAGapAtSpeedIsRetimedOncePerRound) {
+  // At 2.8 m/s towards a wall 3 m ahead with its 1 m gap 1 m to the side. The first round's
+  // detour needs more than a_max and still cuts the wall: re-timed while colliding, then (before)
+  // re-timed again and again with no optimisation in between, each slow-down stacking its start
+  // blend on the others, until the refines ran out and the answer failed verification. One
+  // re-timing per optimisation round finds it well within twice the initial duration.
+  mmh::VoxelGrid g = eam_test::freeGrid();
+  eam_test::addWallWithGap(g, 3.0, 0.2, 1.0, 1.0);
+  const auto p = params();
+  mmh::eam::Planner planner(p);
+  PlanRequest req;
+  req.start.position = Vector3d(0.0, 0.0, 1.2);
+  req.start.velocity = Vector3d(2.8, 0.0, 0.0);
+  req.target = Vector3d(11.0, 0.0, 1.2);
+  const PlanResult r = planner.plan(g, req);
+  expectValid(g, req, r, p);
+  EXPECT_LT(r.trajectory.duration(), 2.0 * r.stats.initial_duration_s);
+}
+
 TEST(EamPlanner, StartInTheInflatedMarginMayLeaveIt) {
   // A newly mapped pillar 0.2 m from the vehicle: the start is inside the 0.3 m inflation (not
   // in the obstacle). The answer leaves the margin within start_escape_radius_m and never
