@@ -24,7 +24,9 @@ bool EscapeZone::frees(const VoxelGrid& grid, const Eigen::Vector3i& local,
                        const Eigen::Vector3d& c) const {
   if (radius <= 0.0 || grid.at(local) == Occupancy::kOccupied) return false;
   if ((c - center).squaredNorm() > radius * radius) return false;
-  return keepsEscapeDistance(grid, c, min_distance, 0.0);
+  // The start's own cell is free (its centre may lie nearer than the start itself), as in
+  // GridAStar: else its centre is an obstacle point on every seed from the start.
+  return local == grid.localIndexOf(center) || keepsEscapeDistance(grid, c, min_distance, 0.0);
 }
 
 bool BlockedMask::build(const VoxelGrid& grid, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
