@@ -38,4 +38,24 @@ std::optional<double> firstCollisionTime(const VoxelGrid& grid, const Trajectory
   return std::nullopt;
 }
 
+double occupiedDistance(const VoxelGrid& grid, const Eigen::Vector3d& p, double limit_m) {
+  if (!(limit_m > 0.0)) return 0.0;
+  const double res = grid.resolution();
+  const Eigen::Vector3i c = grid.localIndexOf(p);
+  const int r = static_cast<int>(std::ceil(limit_m / res)) + 1;
+  double best2 = limit_m * limit_m;
+  for (int z = -r; z <= r; ++z)
+    for (int y = -r; y <= r; ++y)
+      for (int x = -r; x <= r; ++x) {
+        const Eigen::Vector3i n = c + Eigen::Vector3i(x, y, z);
+        if (!grid.inWindow(n) || grid.at(n) != Occupancy::kOccupied) continue;
+        best2 = std::min(best2, (grid.centerOfLocal(n) - p).squaredNorm());
+      }
+  return std::sqrt(best2);
+}
+
+double escapeMinDistance(const VoxelGrid& grid, const Eigen::Vector3d& start, double floor_m) {
+  return std::min(floor_m, occupiedDistance(grid, start, floor_m));
+}
+
 }  // namespace mmh

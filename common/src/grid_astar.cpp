@@ -74,7 +74,9 @@ AStarResult GridAStar::search(const VoxelGrid& grid, const Eigen::Vector3d& star
     if (occ == Occupancy::kOccupied) return false;
     if (!options.unknown_is_free && occ == Occupancy::kUnknown) return false;
     if (!grid.isBlockedLinear(idx)) return true;
-    return escape_cells > 0.0 && (c - s).cast<double>().norm() <= escape_cells;
+    if (!(escape_cells > 0.0 && (c - s).cast<double>().norm() <= escape_cells)) return false;
+    return c == s || keepsEscapeDistance(grid, grid.centerOfLocal(c),
+                                         options.start_escape_min_distance_m, 0.0);
   };
   const int64_t s_idx = grid.linearIndex(s), g_idx = grid.linearIndex(g);
   if (!traversable(s, s_idx)) {

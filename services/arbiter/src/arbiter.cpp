@@ -11,6 +11,9 @@ namespace mmh::arbiter {
 namespace {
 
 constexpr double kUs = 1e-6;  // seconds per microsecond
+// The planners keep mmh::kEscapeDepthTolerance on their own samples; this check samples in
+// time (1 cm of time, up to 3 cm apart at v_max), so it allows a little more between them.
+constexpr double kArbiterEscapeDepthTolerance = 0.03;  // m
 
 bool usesAwareness(Policy p) {
   return p == Policy::kMmh || p == Policy::kMmhNoLazy;
@@ -336,7 +339,14 @@ bool Arbiter::verifyAnswer(const ModeAnswer& a, std::string* why) const {
     if (firstCollisionTime(*grid_, t, 0.0, t.duration(), CollisionLayer::kOccupied)) {
       return fail("enters an obstacle");
     }
+    // Outwards only: never nearer to the occupied cells than the start (or than the check
+    // margin), or a vehicle next to an obstacle is re-planned along it until it touches it.
+    const double min_distance = escapeMinDistance(*grid_, s0.position, params_.check_inflation_m);
     while (clear_from < t.duration() && isPointBlocked(*grid_, t.position(clear_from))) {
+      if (!keepsEscapeDistance(*grid_, t.position(clear_from), min_distance,
+                               kArbiterEscapeDepthTolerance)) {
+        return fail("goes deeper into the obstacle margin it starts in");
+      }
       clear_from += 0.01;
     }
     if ((t.position(clear_from) - s0.position).norm() > params_.start_escape_radius_m) {
@@ -373,8 +383,9 @@ void Arbiter::commitStop(int64_t now, const std::string& why, Trigger trigger) {
   const int64_t start = now + static_cast<int64_t>(params_.replan_lead_s * 1e6);
   const Trajectory stop =
       hasCommitted()
-          ? makeStoppingTrajectory(committed_, (start - committed_start_) * kUs,
-                                   params_.max_acc_mps2, params_.max_vel_mps)
+          ? chooseStoppingTrajectory(grid_, committed_, (start - committed_start_) * kUs,
+                                     params_.max_acc_mps2, params_.max_vel_mps,
+                                     params_.check_inflation_m)
           : makeStoppingTrajectory(stateAt(start), params_.max_acc_mps2, params_.max_vel_mps);
   commit(stop, start, Mode::kStop, false);
   // Braking is not a plan: keep trying the modes, from the next map on.

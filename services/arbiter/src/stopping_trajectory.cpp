@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mmh/common/collision_check.hpp"
 #include "mmh/common/minco.hpp"
 
 namespace mmh::arbiter {
@@ -100,6 +101,29 @@ Trajectory makeStoppingTrajectory(const Trajectory& path, double t0, double max_
     Trajectory stop = minco.trajectory();
     if (stop.maxAcceleration() <= acc_limit && stop.maxSpeed() <= speed_limit * 1.0001) return stop;
   }
+}
+
+double minOccupiedDistance(const VoxelGrid& grid, const Trajectory& traj, double limit_m) {
+  if (traj.empty()) return limit_m;
+  const double dt = std::max(1e-3, 0.01 / std::max(1e-3, traj.maxSpeed()));
+  double best = limit_m;
+  for (double t = 0.0;; t += dt) {
+    const double tc = std::min(t, traj.duration());
+    best = std::min(best, occupiedDistance(grid, traj.position(tc), best));
+    if (tc >= traj.duration()) break;
+  }
+  return best;
+}
+
+Trajectory chooseStoppingTrajectory(const VoxelGrid* grid, const Trajectory& path, double t0,
+                                    double max_acc_mps2, double max_vel_mps, double clearance_m) {
+  Trajectory along = makeStoppingTrajectory(path, t0, max_acc_mps2, max_vel_mps);
+  if (!grid || !grid->valid()) return along;
+  const double limit = clearance_m + 0.1;
+  const double along_clearance = minOccupiedDistance(*grid, along, limit);
+  if (along_clearance >= clearance_m) return along;
+  Trajectory straight = makeStoppingTrajectory(path.state(t0), max_acc_mps2, max_vel_mps);
+  return minOccupiedDistance(*grid, straight, limit) > along_clearance ? straight : along;
 }
 
 }  // namespace mmh::arbiter

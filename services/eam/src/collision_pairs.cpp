@@ -1,5 +1,7 @@
 #include "mmh/eam/collision_pairs.hpp"
 
+#include "mmh/common/collision_check.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -113,7 +115,7 @@ bool awayFromObstacle(const VoxelGrid& grid, const Eigen::Vector3d& x, const Eig
 
 std::vector<CollisionStretch> findCollisionStretches(const UniformBspline& spline,
                                                      const VoxelGrid& grid, double escape_radius_m,
-                                                     double step_m) {
+                                                     double step_m, double escape_min_distance_m) {
   std::vector<CollisionStretch> out;
   const Eigen::Matrix3Xd& q = spline.controlPoints();
   const double dt = spline.knotSpan();
@@ -152,7 +154,8 @@ std::vector<CollisionStretch> findCollisionStretches(const UniformBspline& splin
       bool blocked = in_window && grid.isBlockedLinear(idx);
       if (escaping) {
         if (blocked && grid.atLinear(idx) != Occupancy::kOccupied &&
-            (sample.point - start).norm() <= escape_radius_m) {
+            (sample.point - start).norm() <= escape_radius_m &&
+            keepsEscapeDistance(grid, sample.point, escape_min_distance_m)) {
           blocked = false;  // leaving the margin the start is in
         } else {
           escaping = false;

@@ -35,6 +35,7 @@ EamParams loadEamParams(const Config& config) {
   p.astar_box_margin_m = config.getDouble("eam.astar_box_margin_m", 0.1, 1000.0);
   p.astar_slab_margin_m = config.getDouble("eam.astar_slab_margin_m", 0.0, 100.0);
   p.start_escape_radius_m = config.getDouble("eam.start_escape_radius_m", 0.0, 2.0);
+  p.start_escape_clearance_m = config.getDouble("eam.start_escape_clearance_m", 0.0, 2.0);
   return p;
 }
 

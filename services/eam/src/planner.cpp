@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "mmh/common/collision_check.hpp"
 #include "mmh/common/narrow_space.hpp"
 #include "mmh/eam/bspline_optimizer.hpp"
 #include "mmh/eam/collision_pairs.hpp"
@@ -30,6 +31,13 @@ constexpr double kCheckStep = 0.5;
 constexpr double kFineCheckStep = 0.1;
 // Collision weight multiplier when collisions remain but no new pair could be made.
 constexpr double kCollisionBoost = 4.0;
+// A collision-free curve whose limits re-timing cannot fix (the excess lies where the start
+// state fixes the speed) is reshaped by optimisations with the feasibility weight raised by this
+// factor each time, at most this many per attempt.
+constexpr double kFeasibilityBoost = 10.0;
+constexpr int kMaxFeasibilityRounds = 3;
+// A re-timing stalled when it removed less than this share of the excess ratio.
+constexpr double kRefineProgress = 0.5;
 
 PlanResult fail(PlanResult r, FailReason reason, std::string detail) {
   r.ok = false;
@@ -196,12 +204,28 @@ std::vector<CollisionStretch> mergeStretches(const std::vector<CollisionStretch>
 struct Planner::Attempt {
   UniformBspline spline;
   PairSet pairs;
-  std::vector<char> free_mask;  // control points within window_margin_s of a collision
-  double boost = 1.0;           // extra factor on the collision weight
-  int round = 0;                // optimisations run in this attempt
-  int refines = 0;              // time re-allocations in this attempt
-  double check_step = 0.0;      // collision check sample spacing (m)
-  bool restart = false;         // first round: one guide for all collisions, slots avoided
+  std::vector<char> free_mask;       // control points within window_margin_s of a collision
+  double boost = 1.0;                // extra factor on the collision weight
+  int round = 0;                     // optimisations run in this attempt
+  int refines = 0;                   // time re-allocations in this attempt
+  double check_step = 0.0;           // collision check sample spacing (m)
+  bool restart = false;              // first round: one guide for all collisions, slots avoided
+  double escape_min_distance = 0.0;  // mmh::escapeMinDistance of the start
+  // Time re-allocations of a collision-free curve follow one another without an optimisation
+  // in between: each is applied to the curve as it was before the first of them, with the
+  // product of their ratios, so that their start blends do not stack up (see refineFromBase).
+  bool has_refine_base = false;
+  UniformBspline refine_base;
+  PairSet refine_base_pairs;
+  std::vector<char> refine_base_free;
+  double refine_total = 1.0;
+  double ratio_before_refine = 1.0;  // limit ratio before the last re-timing
+  double feasibility_boost = 1.0;    // extra factor on the feasibility weight
+  int feasibility_rounds = 0;
+  // A re-timing while colliding was made since the last optimisation: the next step is an
+  // optimisation (re-timed again and again, the curve was slowed 3.7 times over, a 29 s answer
+  // for 11 m, each slow-down also adding its start blend to the others).
+  bool retimed_while_colliding = false;
 };
 
 namespace {
@@ -222,6 +246,29 @@ bool horizontalProblem(const PairSet& pairs, const Eigen::Matrix3Xd& q,
     if (z < p.geofence_min.z() + 0.05 || z > p.geofence_max.z() - 0.05) return false;
   }
   return true;
+}
+
+// Frees the control points that shape the knot intervals where the control velocities or
+// accelerations exceed the limits, and those within `margin` points of them. True if any.
+bool freeAroundLimitExcess(const UniformBspline& spline, const EamParams& p, int margin,
+                           int first_free, int last_free, std::vector<char>& free_mask) {
+  const Eigen::Matrix3Xd& q = spline.controlPoints();
+  const double dt = spline.knotSpan();
+  bool any = false;
+  auto mark = [&](int lo, int hi) {
+    for (int i = std::max(first_free, lo - margin); i <= std::min(last_free, hi + margin); ++i) {
+      free_mask[i] = 1;
+      any = true;
+    }
+  };
+  for (int i = 0; i + 1 < q.cols(); ++i) {
+    if ((q.col(i + 1) - q.col(i)).norm() / dt > p.max_vel_mps * kRefineAbove) mark(i, i + 1);
+  }
+  for (int i = 0; i + 2 < q.cols(); ++i) {
+    const double a = (q.col(i + 2) - 2.0 * q.col(i + 1) + q.col(i)).norm() / (dt * dt);
+    if (a > p.max_acc_mps2 * kRefineAbove) mark(i, i + 2);
+  }
+  return any;
 }
 
 }  // namespace
@@ -297,25 +344,66 @@ Planner::RoundsOutcome Planner::runRounds(const VoxelGrid& grid, const PlanReque
   RoundsOutcome outcome = RoundsOutcome::kStillColliding;
   for (;;) {
     const std::vector<CollisionStretch> stretches = timed(&r.stats.check_us, [&] {
-      return findCollisionStretches(at.spline, grid, P.start_escape_radius_m, at.check_step);
+      return findCollisionStretches(at.spline, grid, P.start_escape_radius_m, at.check_step,
+                                    at.escape_min_distance);
     });
+    bool feasibility_round = false;
     if (stretches.empty()) {
       const double ratio = limitRatio(at.spline, P);
-      if (ratio <= kRefineAbove || at.refines >= P.max_refine_rounds) {
+      if (ratio <= kRefineAbove) {
         outcome = RoundsOutcome::kCollisionFree;
         break;
       }
-      slowDown(at.spline, at.pairs, at.free_mask, ratio, req.start, P.max_acc_mps2);
+      // Re-timing slows the whole curve but keeps the start state, so it cannot remove an
+      // excess that the start forces (e.g. a swerve at speed right after it): when it stalls,
+      // or may not go on, reshape the curve there with a stronger feasibility term instead.
+      const bool stalled =
+          at.has_refine_base && ratio > 1.0 + kRefineProgress * (at.ratio_before_refine - 1.0);
+      const int margin = static_cast<int>(std::ceil(P.window_margin_s / at.spline.knotSpan()));
+      if ((stalled || at.refines >= P.max_refine_rounds) &&
+          at.feasibility_rounds < kMaxFeasibilityRounds && at.round < P.max_rebound_rounds &&
+          freeAroundLimitExcess(at.spline, P, margin, kFirstFree, last_free, at.free_mask)) {
+        feasibility_round = true;
+        ++at.feasibility_rounds;
+        at.feasibility_boost *= kFeasibilityBoost;
+        if (trace_) trace_("feasibility round: limit ratio " + std::to_string(ratio));
+      } else if (at.refines >= P.max_refine_rounds) {
+        outcome = RoundsOutcome::kCollisionFree;
+        break;
+      }
+    }
+    if (stretches.empty() && !feasibility_round) {
+      const double ratio = limitRatio(at.spline, P);
+      at.ratio_before_refine = ratio;
+      // Each slow-down sheds speed at the start within a blend sized for its own ratio; applied
+      // one after another to the same curve, the blends add their decelerations up (a moving
+      // start then ends far over a_max after a few of them). Re-time the curve from before the
+      // first of them with the product of the ratios instead: one blend, sized for the total.
+      if (!at.has_refine_base) {
+        at.has_refine_base = true;
+        at.refine_base = at.spline;
+        at.refine_base_pairs = at.pairs;
+        at.refine_base_free = at.free_mask;
+        at.refine_total = 1.0;
+      }
+      at.refine_total *= ratio;
+      at.spline = at.refine_base;
+      at.pairs = at.refine_base_pairs;
+      at.free_mask = at.refine_base_free;
+      slowDown(at.spline, at.pairs, at.free_mask, at.refine_total, req.start, P.max_acc_mps2);
       ++at.refines;
       ++r.stats.refines;
-      if (trace_) trace_("refine: knot span x " + std::to_string(ratio * kRefineMargin));
+      if (trace_) trace_("refine: knot span x " + std::to_string(at.refine_total * kRefineMargin));
       continue;  // check collisions again with the new start
     }
     if (at.round >= P.max_rebound_rounds) break;
-    if (at.round > 0 && at.refines < P.max_refine_rounds) {
+    if (!feasibility_round && at.round > 0 && !at.retimed_while_colliding &&
+        at.refines < P.max_refine_rounds) {
       const double ratio = limitRatio(at.spline, P);
       if (ratio > kRefineWhileColliding) {
         slowDown(at.spline, at.pairs, at.free_mask, ratio, req.start, P.max_acc_mps2);
+        at.has_refine_base = false;
+        at.retimed_while_colliding = true;
         ++at.refines;
         ++r.stats.refines;
         if (trace_) trace_("refine while colliding: x " + std::to_string(ratio * kRefineMargin));
@@ -376,7 +464,8 @@ Planner::RoundsOutcome Planner::runRounds(const VoxelGrid& grid, const PlanReque
       // hugs the obstacles: give those grazes their pairs now (from the same guides) rather
       // than in another round.
       const std::vector<CollisionStretch> grazes = timed(&r.stats.check_us, [&] {
-        return findCollisionStretches(at.spline, grid, P.start_escape_radius_m, at.check_step);
+        return findCollisionStretches(at.spline, grid, P.start_escape_radius_m, at.check_step,
+                                      at.escape_min_distance);
       });
       for (const CollisionStretch& g : grazes) {
         for (const GuideSpan& span : round_guides) {
@@ -387,7 +476,7 @@ Planner::RoundsOutcome Planner::runRounds(const VoxelGrid& grid, const PlanReque
         }
       }
     }
-    if (added == 0 && at.round > 0) at.boost *= kCollisionBoost;
+    if (added == 0 && at.round > 0 && !feasibility_round) at.boost *= kCollisionBoost;
     std::vector<int> free_points;
     for (int i = kFirstFree; i <= last_free; ++i) {
       if (at.free_mask[i]) free_points.push_back(i);
@@ -397,7 +486,7 @@ Planner::RoundsOutcome Planner::runRounds(const VoxelGrid& grid, const PlanReque
     CostWeights w;
     w.smooth = r.narrow ? P.lambda_smooth_narrow : P.lambda_smooth_open;
     w.collision = at.boost * (r.narrow ? P.lambda_collision_narrow : P.lambda_collision_open);
-    w.feasibility = P.lambda_feasibility;
+    w.feasibility = at.feasibility_boost * P.lambda_feasibility;
     r.weights = w;
     const BsplineCost cost(settings, w, &at.pairs);
     const bool keep_altitude =
@@ -406,6 +495,8 @@ Planner::RoundsOutcome Planner::runRounds(const VoxelGrid& grid, const PlanReque
       return optimizeControlPoints(at.spline, cost, free_points, P.max_iterations,
                                    P.optimizer_ftol_rel, keep_altitude);
     });
+    at.has_refine_base = false;  // the curve changed: later re-timings start from it
+    at.retimed_while_colliding = false;
     ++at.round;
     ++r.stats.rounds;
     r.stats.evaluations += opt.evaluations;
@@ -474,6 +565,8 @@ PlanResult Planner::plan(const VoxelGrid& grid, const PlanRequest& req) {
     at.free_mask.assign(initial.numControlPoints(), 0);
     at.check_step = kCheckStep * grid.resolution();
     at.restart = attempt > 0;
+    at.escape_min_distance =
+        escapeMinDistance(grid, req.start.position, P.start_escape_clearance_m);
     r.stats.restarts = attempt;
     r.guide_paths.clear();
     for (;;) {

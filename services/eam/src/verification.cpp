@@ -1,5 +1,6 @@
 #include "mmh/eam/verification.hpp"
 
+#include "mmh/common/collision_check.hpp"
 #include "mmh/eam/cubic_roots.hpp"
 
 #include <algorithm>
@@ -78,6 +79,8 @@ Verification verifyTrajectory(const Trajectory& traj, const VoxelGrid& grid,
   const Eigen::Vector3d box_lo = params.geofence_min.array() - 0.01;
   const Eigen::Vector3d box_hi = params.geofence_max.array() + 0.01;
   bool escaping = true;
+  const double escape_min_distance =
+      escapeMinDistance(grid, start.position, params.start_escape_clearance_m);
   double t0 = 0.0;
   for (const Piece& piece : traj.pieces()) {
     // Pieces of degree <= 3 (EAM's) are evaluated with their four coefficients only.
@@ -100,6 +103,11 @@ Verification verifyTrajectory(const Trajectory& traj, const VoxelGrid& grid,
       if (in_window && grid.isBlockedLinear(idx)) {
         if (!(escaping && (p - start.position).norm() <= params.start_escape_radius_m)) {
           r.why = "enters the inflated obstacles at t=" + fmt(t0 + tl) + " s";
+          r.collision = true;
+          return r;
+        }
+        if (!keepsEscapeDistance(grid, p, escape_min_distance)) {
+          r.why = "goes deeper into the inflated margin it starts in at t=" + fmt(t0 + tl) + " s";
           r.collision = true;
           return r;
         }

@@ -65,8 +65,8 @@ bool segmentVisible(const VoxelGrid& grid, const Eigen::Vector3d& a, const Eigen
     const Eigen::Vector3d p = a + (b - a) * (static_cast<double>(i) / n);
     const Eigen::Vector3i c = grid.localIndexOf(p);
     if (!grid.isBlocked(c)) continue;
-    if (escape.radius > 0.0 && grid.at(c) != Occupancy::kOccupied &&
-        (grid.centerOfLocal(c) - escape.center).squaredNorm() <= r2)
+    if (escape.radius > 0.0 && (grid.centerOfLocal(c) - escape.center).squaredNorm() <= r2 &&
+        escape.frees(grid, c, grid.centerOfLocal(c)))
       continue;
     return false;
   }

@@ -1,5 +1,7 @@
 #include "mmh/som/obstacle_points.hpp"
 
+#include "mmh/common/collision_check.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -16,6 +18,15 @@ bool cellRange(const VoxelGrid& grid, const Eigen::Vector3d& lo, const Eigen::Ve
     if ((*first)[i] > (*last)[i]) return false;
   }
   return true;
+}
+
+bool EscapeZone::frees(const VoxelGrid& grid, const Eigen::Vector3i& local,
+                       const Eigen::Vector3d& c) const {
+  if (radius <= 0.0 || grid.at(local) == Occupancy::kOccupied) return false;
+  if ((c - center).squaredNorm() > radius * radius) return false;
+  // The start's own cell is free (its centre may lie nearer than the start itself), as in
+  // GridAStar: else its centre is an obstacle point on every seed from the start.
+  return local == grid.localIndexOf(center) || keepsEscapeDistance(grid, c, min_distance, 0.0);
 }
 
 bool BlockedMask::build(const VoxelGrid& grid, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
@@ -54,7 +65,7 @@ bool BlockedMask::build(const VoxelGrid& grid, const Eigen::Vector3d& lo, const 
           const Eigen::Vector3d c = centerOf(x - 1, y - 1, z - 1);
           if ((c - escape.center).squaredNorm() > r2) continue;
           const Eigen::Vector3i local = f + Eigen::Vector3i(x - 1, y - 1, z - 1);
-          if (grid.at(local) != Occupancy::kOccupied) m = 0;
+          if (escape.frees(grid, local, c)) m = 0;
         }
   }
   return true;

@@ -26,6 +26,8 @@ SomParams loadSomParams(const Config& c) {
   p.astar_heuristic_weight =
       optDouble(c, "som.astar_heuristic_weight", p.astar_heuristic_weight, 1.0, 10.0);
   p.start_escape_radius_m = optDouble(c, "som.start_escape_radius_m", 0.5, 0.0, 5.0);
+  p.start_escape_clearance_m =
+      optDouble(c, "som.start_escape_clearance_m", p.start_escape_clearance_m, 0.0, 5.0);
 
   CorridorParams& k = p.corridor;
   k.box_margin_m = optDouble(c, "som.corridor_box_margin_m", k.box_margin_m, 0.3, 20.0);

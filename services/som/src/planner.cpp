@@ -138,6 +138,9 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
   astar_options.max_bound = bound_hi;
   const bool start_in_margin = grid.isBlockedPoint(start.position);
   astar_options.start_escape_radius_m = start_in_margin ? p.start_escape_radius_m : 0.0;
+  const double escape_min_distance =
+      start_in_margin ? escapeMinDistance(grid, start.position, p.start_escape_clearance_m) : 0.0;
+  astar_options.start_escape_min_distance_m = escape_min_distance;
   const AStarResult found = astar_.search(grid, start.position, target, astar_options);
   out.astar_expansions = found.expansions;
   if (found.ok()) out.path = shortenPath(grid, withoutCollinearPoints(found.path));
@@ -162,6 +165,7 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
   if (start_in_margin) {
     escape.center = start.position;
     escape.radius = p.start_escape_radius_m;
+    escape.min_distance = escape_min_distance;
   }
   std::string why;
   const bool corridor_ok =
@@ -188,8 +192,9 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
 
   // --- verification -----------------------------------------------------------------------
   step.restart();
-  out.verify = verifyTrajectory(out.trajectory, start, target, grid, out.corridor,
-                                out.piece_polytope, p.max_vel_mps, p.max_acc_mps2, p.verify);
+  out.verify =
+      verifyTrajectory(out.trajectory, start, target, grid, out.corridor, out.piece_polytope,
+                       p.max_vel_mps, p.max_acc_mps2, p.verify, escape_min_distance);
   step.stop(&out.timings.verify);
   if (!out.verify.ok) return finish(PlanStatus::kVerify, out.verify.failure);
   return finish(PlanStatus::kOk, "");

@@ -24,44 +24,55 @@ double smoothedL1(double x, double mu, double* grad) {
   return x - 0.5 * mu;
 }
 
-namespace {
-
-// Time at arc length s of a 1-D rest-to-rest style profile over length L: start speed v0,
-// accelerate at a up to vm, cruise, brake at a to rest at L (the initial time allocation).
-class SpeedProfile {
- public:
-  SpeedProfile(double length, double v0, double vm, double a) : l_(length), a_(a) {
-    v0_ = std::clamp(v0, 0.0, vm);
-    if (v0_ * v0_ / (2.0 * a) >= l_) {  // cannot stop in time: brake harder, all the way
-      brake_only_ = true;
-      a_brake_ = l_ > 0.0 ? v0_ * v0_ / (2.0 * l_) : a;
-      return;
-    }
-    vp_ = std::min(vm, std::sqrt(a * l_ + 0.5 * v0_ * v0_));
-    s_acc_ = (vp_ * vp_ - v0_ * v0_) / (2.0 * a);
-    s_dec_ = vp_ * vp_ / (2.0 * a);
-    t_acc_ = (vp_ - v0_) / a;
-    total_ = t_acc_ + std::max(0.0, l_ - s_acc_ - s_dec_) / vp_ + vp_ / a;
+// Initial durations of the segments of a polyline, from a speed profile that keeps a_max along
+// it and slows down for its corners: at every vertex where the polyline turns by theta, at most
+// sqrt(a_max r), r = e / tan(theta / 2) the radius of the arc tangent to both segments at
+// e = half the shorter one (the turn the optimiser will round it into), then a forward pass from
+// the start speed v0 and a backward pass from rest at the end, each at a_max, and on every
+// segment the fastest trapezoid between its end speeds under vm. A straight line gives the
+// rest-to-rest (or v0-to-rest) trapezoid. A profile that ignores the corners starts L-BFGS at
+// full speed through a bend that a moving start cannot take within a_max, a local minimum it
+// does not leave (the answer then fails on the acceleration limit).
+std::vector<double> cornerAwareDurations(const std::vector<Eigen::Vector3d>& points, double v0,
+                                         double vm, double a) {
+  const size_t n = points.size();
+  std::vector<double> len(n > 0 ? n - 1 : 0), v(n, vm);
+  for (size_t i = 0; i + 1 < n; ++i) len[i] = (points[i + 1] - points[i]).norm();
+  for (size_t i = 1; i + 1 < n; ++i) {
+    if (len[i - 1] < 1e-9 || len[i] < 1e-9) continue;
+    const Eigen::Vector3d d0 = (points[i] - points[i - 1]) / len[i - 1];
+    const Eigen::Vector3d d1 = (points[i + 1] - points[i]) / len[i];
+    const double theta = std::acos(std::clamp(d0.dot(d1), -1.0, 1.0));
+    if (theta < 1e-3) continue;
+    const double radius = 0.5 * std::min(len[i - 1], len[i]) / std::tan(0.5 * theta);
+    v[i] = std::min(vm, std::sqrt(a * radius));
   }
-
-  double timeAt(double s) const {
-    s = std::clamp(s, 0.0, l_);
-    if (brake_only_) {
-      if (a_brake_ <= 0.0 || v0_ <= 0.0) return 0.0;
-      return (v0_ - std::sqrt(std::max(0.0, v0_ * v0_ - 2.0 * a_brake_ * s))) / a_brake_;
-    }
-    if (s <= s_acc_) return (-v0_ + std::sqrt(v0_ * v0_ + 2.0 * a_ * s)) / a_;
-    if (s <= l_ - s_dec_) return t_acc_ + (s - s_acc_) / vp_;
-    return total_ - std::sqrt(2.0 * (l_ - s) / a_);
+  if (n > 0) {
+    v.front() = std::clamp(v0, 0.0, vm);
+    v.back() = 0.0;
   }
-
- private:
-  double l_, a_, v0_ = 0.0, vp_ = 1.0, s_acc_ = 0.0, s_dec_ = 0.0, t_acc_ = 0.0, total_ = 0.0;
-  bool brake_only_ = false;
-  double a_brake_ = 0.0;
-};
-
-}  // namespace
+  for (size_t i = 1; i < n; ++i)
+    v[i] = std::min(v[i], std::sqrt(v[i - 1] * v[i - 1] + 2.0 * a * len[i - 1]));
+  for (size_t i = n - 1; i-- > 1;)
+    v[i] = std::min(v[i], std::sqrt(v[i + 1] * v[i + 1] + 2.0 * a * len[i]));
+  std::vector<double> durations(len.size(), 0.0);
+  for (size_t i = 0; i < len.size(); ++i) {
+    const double l = len[i], va = v[i], vb = v[i + 1];
+    if (l <= 0.0) continue;
+    // Faster peak than both ends allow (vm capped); if the ends cannot be joined at a_max (a
+    // start too fast to brake in time), the mean speed.
+    const double peak2 = a * l + 0.5 * (va * va + vb * vb);
+    if (std::abs(va * va - vb * vb) > 2.0 * a * l + 1e-9) {
+      durations[i] = 2.0 * l / std::max(1e-6, va + vb);
+      continue;
+    }
+    const double vp = std::min(vm, std::sqrt(peak2));
+    const double s_acc = (vp * vp - va * va) / (2.0 * a), s_dec = (vp * vp - vb * vb) / (2.0 * a);
+    durations[i] =
+        (vp - va) / a + (vp - vb) / a + std::max(0.0, l - s_acc - s_dec) / std::max(vp, 1e-6);
+  }
+  return durations;
+}
 
 TrajectoryOptimizer::TrajectoryOptimizer(const OptimizerParams& params, double max_vel_mps,
                                          double max_acc_mps2)
@@ -88,14 +99,11 @@ bool TrajectoryOptimizer::setup(const KinematicState& start, const Eigen::Vector
   }
   pieces_ = static_cast<int>(piece_polytope_.size());
 
-  // Initial durations from a speed profile along the polyline.
-  std::vector<double> arc{0.0};
-  for (size_t i = 1; i < waypoints.size(); ++i)
-    arc.push_back(arc.back() + (waypoints[i] - waypoints[i - 1]).norm());
+  // Initial durations from a corner-aware speed profile along the polyline.
   Eigen::Vector3d dir0 = waypoints[1] - waypoints[0];
   dir0 = dir0.norm() > 1e-9 ? Eigen::Vector3d(dir0.normalized()) : Eigen::Vector3d::Zero();
-  const SpeedProfile profile(arc.back(), std::max(0.0, start.velocity.dot(dir0)), max_vel_,
-                             max_acc_);
+  const std::vector<double> initial_durations =
+      cornerAwareDurations(waypoints, std::max(0.0, start.velocity.dot(dir0)), max_vel_, max_acc_);
 
   moving_start_ = start.velocity.norm() > 0.1 || start.acceleration.norm() > 0.1;
   head_.col(0) = start.position;
@@ -109,8 +117,8 @@ bool TrajectoryOptimizer::setup(const KinematicState& start, const Eigen::Vector
   x0_.resize(3 * (m - 1) + m);
   for (int i = 0; i < m - 1; ++i) x0_.segment<3>(3 * i) = waypoints[i + 1];
   for (int i = 0; i < m; ++i) {
-    const double dt = profile.timeAt(arc[i + 1]) - profile.timeAt(arc[i]);
-    const double floor = std::max(0.05, (arc[i + 1] - arc[i]) / max_vel_);
+    const double dt = initial_durations[i];
+    const double floor = std::max(0.05, (waypoints[i + 1] - waypoints[i]).norm() / max_vel_);
     x0_[3 * (m - 1) + i] = tauFromDuration(std::max(dt, floor));
   }
   points_.resize(3, m - 1);

@@ -1,5 +1,7 @@
 #include "mmh/som/verification.hpp"
 
+#include "mmh/common/collision_check.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -19,7 +21,8 @@ std::string fmt(double v) {
 VerifyReport verifyTrajectory(const Trajectory& traj, const KinematicState& start,
                               const Eigen::Vector3d& target, const VoxelGrid& grid,
                               const Corridor& corridor, const std::vector<int>& piece_polytope,
-                              double max_vel_mps, double max_acc_mps2, const VerifyParams& params) {
+                              double max_vel_mps, double max_acc_mps2, const VerifyParams& params,
+                              double escape_min_distance_m) {
   VerifyReport r;
   auto fail = [&](const std::string& why) {
     r.ok = false;
@@ -50,6 +53,9 @@ VerifyReport verifyTrajectory(const Trajectory& traj, const KinematicState& star
 
   // Samples no more than a quarter voxel apart along the path.
   const double dt = std::max(1e-4, 0.25 * grid.resolution() / std::max(r.max_speed, 1e-3));
+  // A start inside the inflated margin leaves it outwards: while the samples are in the margin,
+  // none nearer to the occupied cells than escape_min_distance_m (mmh::keepsEscapeDistance).
+  bool escaping = grid.isBlockedPoint(start.position);
   for (int i = 0; i < traj.numPieces(); ++i) {
     const Piece& piece = traj.pieces()[i];
     const int steps = std::max(1, static_cast<int>(std::ceil(piece.duration / dt)));
@@ -63,6 +69,14 @@ VerifyReport verifyTrajectory(const Trajectory& traj, const KinematicState& star
       ++r.samples;
       if (grid.isOccupiedPoint(p))
         return fail("sample at t-piece " + std::to_string(i) + " lies in an occupied voxel");
+      if (escaping) {
+        if (!grid.isBlockedPoint(p)) {
+          escaping = false;
+        } else if (!keepsEscapeDistance(grid, p, escape_min_distance_m)) {
+          return fail("goes deeper into the inflated margin it starts in (piece " +
+                      std::to_string(i) + ")");
+        }
+      }
       double v = own.maxViolation(p);
       if (v > params.corridor_tolerance_m) {
         for (const Polytope& other : corridor.polytopes) v = std::min(v, other.maxViolation(p));

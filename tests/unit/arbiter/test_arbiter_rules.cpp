@@ -474,6 +474,36 @@ TEST_F(ArbiterRules, SilentModeFallsBackToTheNextMode) {
   EXPECT_EQ(commit->mode, Mode::kEam);
 }
 
+TEST_F(ArbiterRules, AnAnswerLeavesTheMarginOutwardsOnly) {
+  // Same start 0.15 m from the pillar, inside the check margin. An answer that first slides
+  // nearer to the pillar (through no occupied voxel, out of the margin 0.35 m from the start)
+  // is refused: accepted, re-plans from in the margin crept along the obstacle a little nearer
+  // each time until the vehicle touched it.
+  putPillar(0.0, 0.45, 0.3);
+  auto a = started(Policy::kMmh);
+  auto r = a->takeRequests().at(0);
+  ASSERT_TRUE(mmh::isPointBlocked(grid_, r.start.position));
+  const Vector3d deeper(0.15, 0.1, 1.2);  // 0.08 m from the pillar's surface
+  ASSERT_FALSE(grid_.isOccupiedPoint(deeper));
+  const Trajectory in = simplePlan(r.start, deeper);
+  mmh::KinematicState at_deeper;
+  at_deeper.position = deeper;
+  const Trajectory out = simplePlan(at_deeper, Vector3d(0.6, -0.2, 1.2));
+  std::vector<mmh::Piece> pieces = in.pieces();
+  pieces.insert(pieces.end(), out.pieces().begin(), out.pieces().end());
+  ModeAnswer sliding = okAnswer(r);
+  sliding.trajectory = Trajectory(pieces);
+  ASSERT_FALSE(mmh::firstCollisionTime(grid_, sliding.trajectory, 0.0,
+                                       sliding.trajectory.duration(),
+                                       mmh::CollisionLayer::kOccupied));
+  a->onAnswer(sliding, at(0.001));
+  EXPECT_FALSE(a->takeCommit().has_value());
+  EXPECT_EQ(a->counters().rejected_answers, 1);
+  const auto decisions = a->takeDecisions();
+  ASSERT_FALSE(decisions.empty());
+  EXPECT_NE(decisions.back().detail.find("deeper"), std::string::npos) << decisions.back().detail;
+}
+
 TEST_F(ArbiterRules, AnAnswerMayLeaveTheMarginItStartsIn) {
   // The vehicle stopped 0.15 m from a newly mapped pillar: inside the check margin. Answers that
   // leave the margin near the start are accepted (else it would be stuck there for good), ones

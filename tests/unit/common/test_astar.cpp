@@ -155,3 +155,25 @@ TEST(GridAStar, WeightedSearchExpandsLessAndStaysWithinItsBound) {
   for (size_t i = 1; i < fast.path.size(); ++i)
     EXPECT_TRUE(mmh::isSegmentFree(g, fast.path[i - 1], fast.path[i]));
 }
+
+TEST(GridAStar, EscapeFromTheMarginLeadsOutwards) {
+  // A wall at x = 3.05 up to y = 2; the start 0.25 m from it, in the margin; the goal beyond the
+  // wall's end. With the escape rule no cell of the path but the start's comes nearer to the
+  // wall than the start: the path leaves the margin instead of running along the wall in it.
+  VoxelGrid g(0.1, Vector3i(0, 0, 0), Vector3i(60, 40, 20));
+  g.setInflationRadius(0.3);
+  for (int z = 0; z < 20; ++z)
+    for (int y = 0; y < 20; ++y) g.set(Vector3i(30, y, z), Occupancy::kOccupied);
+  const Vector3d start(2.80, 0.5, 1.0), goal(3.5, 3.5, 1.0);
+  ASSERT_TRUE(g.isBlockedPoint(start));
+  mmh::AStarOptions escape;
+  escape.start_escape_radius_m = 0.5;
+  escape.start_escape_min_distance_m = mmh::escapeMinDistance(g, start, 0.28);
+  mmh::GridAStar astar;
+  const auto r = astar.search(g, start, goal, escape);
+  ASSERT_TRUE(r.ok());
+  for (size_t i = 1; i + 1 < r.path.size(); ++i) {
+    EXPECT_GE(mmh::occupiedDistance(g, r.path[i], 1.0), escape.start_escape_min_distance_m - 1e-9)
+        << "path cell " << i << " at " << r.path[i].transpose();
+  }
+}

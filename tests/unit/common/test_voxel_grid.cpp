@@ -129,3 +129,24 @@ TEST(CollisionCheck, SegmentsAndTrajectories) {
   EXPECT_NEAR(*hit, 1.3, 0.06);
   EXPECT_FALSE(mmh::firstCollisionTime(g, mmh::Trajectory({p}), 0.0, 1.2).has_value());
 }
+
+TEST(CollisionCheck, OccupiedDistanceAndTheEscapeRule) {
+  mmh::VoxelGrid g(0.1, Eigen::Vector3i(0, 0, 0), Eigen::Vector3i(20, 20, 10));
+  for (int64_t i = 0; i < g.numCells(); ++i) g.setLinear(i, mmh::Occupancy::kFree);
+  g.setInflationRadius(0.3);
+  g.set(Eigen::Vector3i(10, 10, 5), mmh::Occupancy::kOccupied);  // centre (1.05, 1.05, 0.55)
+  const Eigen::Vector3d centre(1.05, 1.05, 0.55);
+  EXPECT_NEAR(mmh::occupiedDistance(g, centre + Eigen::Vector3d(0.2, 0, 0), 0.5), 0.2, 1e-12);
+  EXPECT_NEAR(mmh::occupiedDistance(g, centre + Eigen::Vector3d(0.1, 0.1, 0), 0.5), std::sqrt(0.02),
+              1e-12);
+  EXPECT_DOUBLE_EQ(mmh::occupiedDistance(g, centre + Eigen::Vector3d(0.6, 0, 0), 0.5), 0.5);
+  // A start 0.2 m away may move outwards or round at 0.2 m, not inwards; the distance asked for
+  // is capped by the floor.
+  const Eigen::Vector3d start = centre + Eigen::Vector3d(0.2, 0, 0);
+  const double d = mmh::escapeMinDistance(g, start, 0.28);
+  EXPECT_NEAR(d, 0.2, 1e-12);
+  EXPECT_TRUE(mmh::keepsEscapeDistance(g, centre + Eigen::Vector3d(0.3, 0, 0), d));
+  EXPECT_TRUE(mmh::keepsEscapeDistance(g, centre + Eigen::Vector3d(0, 0.2, 0), d));
+  EXPECT_FALSE(mmh::keepsEscapeDistance(g, centre + Eigen::Vector3d(0.15, 0, 0), d));
+  EXPECT_NEAR(mmh::escapeMinDistance(g, centre + Eigen::Vector3d(0.29, 0, 0), 0.25), 0.25, 1e-12);
+}

@@ -158,6 +158,54 @@ TEST(EamPlanner, SlowingDownFromCruiseSpeedKeepsTheStartAndDoesNotCrawl) {
   EXPECT_LT(r.trajectory.duration(), 2.0 * r.stats.initial_duration_s);
 }
 
+TEST(EamPlanner, PillarCloseAheadAtCruiseSpeedStaysWithinTheLimits) {
+  // At v_max with a pillar 3-4 m ahead, the detour starts right after the start. Re-timing
+  // slows the whole curve but must keep the start state: applied again and again, each
+  // slow-down added its own braking at the start to the previous ones (the answer ended at
+  // 3.5-4.2 m/s^2 and failed verification), and the excess at the swerve itself needs a
+  // reshaped curve, not more time. All of these failed on the acceleration limit before.
+  const auto p = params();
+  mmh::eam::Planner planner(p);
+  struct Pillar {
+    double x, y, r;
+  };
+  for (const Pillar& pillar : {Pillar{3.0, 0.0, 0.3}, Pillar{3.0, 0.2, 0.5}, Pillar{3.5, 0.0, 0.5},
+                               Pillar{4.0, 0.0, 0.5}}) {
+    SCOPED_TRACE("pillar at x " + std::to_string(pillar.x) + ", y " + std::to_string(pillar.y) +
+                 ", r " + std::to_string(pillar.r));
+    mmh::VoxelGrid g = eam_test::freeGrid();
+    eam_test::addPillar(g, pillar.x, pillar.y, pillar.r);
+    PlanRequest req;
+    req.start.position = Vector3d(0.0, 0.0, 1.2);
+    req.start.velocity = Vector3d(p.max_vel_mps, 0.0, 0.0);
+    req.reference = cruiseThenBrake(req.start.position, p.max_vel_mps, 2.0, 3.0);
+    req.target = req.reference.position(req.reference.duration());
+    ASSERT_GE(eam_test::firstBlockedTime(g, req.reference, true), 0.0);
+    const PlanResult r = planner.plan(g, req);
+    expectValid(g, req, r, p);
+    EXPECT_LT(r.trajectory.duration(), 2.0 * r.stats.initial_duration_s);
+  }
+}
+
+TEST(EamPlanner, DetourThroughAGapAtSpeedIsRetimedOncePerRound) {
+  // At 2.8 m/s towards a wall 3 m ahead with its 1 m gap 1 m to the side. The first round's
+  // detour needs more than a_max and still cuts the wall: re-timed while colliding, then (before)
+  // re-timed again and again with no optimisation in between, each slow-down stacking its start
+  // blend on the others, until the refines ran out and the answer failed verification. One
+  // re-timing per optimisation round finds it well within twice the initial duration.
+  mmh::VoxelGrid g = eam_test::freeGrid();
+  eam_test::addWallWithGap(g, 3.0, 0.2, 1.0, 1.0);
+  const auto p = params();
+  mmh::eam::Planner planner(p);
+  PlanRequest req;
+  req.start.position = Vector3d(0.0, 0.0, 1.2);
+  req.start.velocity = Vector3d(2.8, 0.0, 0.0);
+  req.target = Vector3d(11.0, 0.0, 1.2);
+  const PlanResult r = planner.plan(g, req);
+  expectValid(g, req, r, p);
+  EXPECT_LT(r.trajectory.duration(), 2.0 * r.stats.initial_duration_s);
+}
+
 TEST(EamPlanner, StartInTheInflatedMarginMayLeaveIt) {
   // A newly mapped pillar 0.2 m from the vehicle: the start is inside the 0.3 m inflation (not
   // in the obstacle). The answer leaves the margin within start_escape_radius_m and never
@@ -282,6 +330,31 @@ TEST(EamPlanner, EnclosedTargetHasNoPath) {
   const PlanResult r = planner.plan(g, request(Vector3d(0, 0, 1.2), Vector3d(8, 0, 1.2), 7.0));
   EXPECT_FALSE(r.ok);
   EXPECT_EQ(r.reason, FailReason::kNoPath);
+}
+
+TEST(EamVerification, AStartInTheMarginLeavesItOutwardsOnly) {
+  // Start 0.2 m from a pillar's surface (inside the 0.3 m margin). Leaving the margin straight
+  // away is accepted; first sliding to 0.05 m from the surface (no occupied voxel touched, all
+  // within start_escape_radius_m) is not: accepted, such escapes let a vehicle next to an
+  // obstacle be re-planned along it, nearer each time, until it touched it.
+  mmh::VoxelGrid g = eam_test::freeGrid();
+  eam_test::addPillar(g, 1.0, 0.55, 0.35);
+  const auto p = params();
+  mmh::KinematicState start;
+  start.position = Vector3d(1.0, 0.0, 1.2);
+  ASSERT_TRUE(g.isBlockedPoint(start.position));
+  const Vector3d deeper(1.12, 0.17, 1.2), out(1.0, -0.25, 1.2);
+  ASSERT_FALSE(g.isOccupiedPoint(deeper));
+  const mmh::Trajectory away = eam_test::straightLine(start.position, out, 1.0);
+  EXPECT_TRUE(mmh::eam::verifyTrajectory(away, g, start, out, p).ok);
+  std::vector<mmh::Piece> pieces = eam_test::straightLine(start.position, deeper, 1.0).pieces();
+  pieces.push_back(eam_test::straightLine(deeper, out, 1.0).pieces().front());
+  const mmh::Trajectory sliding(pieces);
+  ASSERT_EQ(eam_test::firstBlockedTime(g, sliding, /*occupied_only=*/true), -1.0);
+  const mmh::eam::Verification v = mmh::eam::verifyTrajectory(sliding, g, start, out, p);
+  EXPECT_FALSE(v.ok);
+  EXPECT_TRUE(v.collision);
+  EXPECT_NE(v.why.find("deeper"), std::string::npos) << v.why;
 }
 
 TEST(EamVerification, RejectsCollisionsLimitsAndWrongEnds) {

@@ -234,7 +234,7 @@ TEST(FpmParams, ConfigValuesAreRangeChecked) {
       mmh::fpm::loadParams(mmh::Config::loadFile(MMH_SOURCE_DIR "/deploy/config/default.yaml"));
   EXPECT_DOUBLE_EQ(good.max_vel_mps, 3.0);
   EXPECT_DOUBLE_EQ(good.max_acc_mps2, 2.0);
-  EXPECT_DOUBLE_EQ(good.time_weight, 1000.0);
+  EXPECT_DOUBLE_EQ(good.time_weight, 20.0);
   EXPECT_DOUBLE_EQ(good.geofence_max_m.z(), 2.7);
   const std::string base =
       "vehicle: {max_vel_mps: 3.0, max_acc_mps2: 2.0}\n"

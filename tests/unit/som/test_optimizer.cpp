@@ -161,6 +161,29 @@ TEST(SomOptimizer, ResultMeetsBoundaryConditionsAndLimits) {
   EXPECT_EQ(out.piece_polytope.size(), static_cast<size_t>(t.numPieces()));
 }
 
+TEST(SomOptimizer, CornerAwareDurations) {
+  using mmh::som::cornerAwareDurations;
+  const double vm = 3.0, a = 2.0;
+  // A straight line: the rest-to-rest trapezoid (accelerate 1.5 s, cruise, brake 1.5 s).
+  const std::vector<Vector3d> line{Vector3d(0, 0, 0), Vector3d(10, 0, 0), Vector3d(20, 0, 0)};
+  const auto d_line = cornerAwareDurations(line, 0.0, vm, a);
+  ASSERT_EQ(d_line.size(), 2u);
+  EXPECT_NEAR(d_line[0] + d_line[1], 20.0 / vm + vm / a, 1e-9);
+  EXPECT_NEAR(d_line[0], d_line[1], 1e-9);
+  // From 3 m/s to rest over 10 m: cruise 7.75 m, brake 1.5 s.
+  const std::vector<Vector3d> one{Vector3d(0, 0, 0), Vector3d(10, 0, 0)};
+  EXPECT_NEAR(cornerAwareDurations(one, 3.0, vm, a)[0], 7.75 / 3.0 + 1.5, 1e-9);
+  // A right angle between 1 m legs: at most sqrt(a r), r = 0.5 m, at the corner, so both legs
+  // take longer than the straight 2 m would, and the corner leg into it no less than at that
+  // speed from 3 m/s.
+  const std::vector<Vector3d> corner{Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(1, 1, 0)};
+  const auto d_corner = cornerAwareDurations(corner, 3.0, vm, a);
+  const auto d_straight =
+      cornerAwareDurations({Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(2, 0, 0)}, 3.0, vm, a);
+  EXPECT_GT(d_corner[0], d_straight[0]);
+  EXPECT_GE(d_corner[0], 2.0 * 1.0 / (3.0 + std::sqrt(a * 0.5)) - 1e-9);
+}
+
 TEST(SomOptimizer, RefusesAnEmptyCorridor) {
   mmh::som::TrajectoryOptimizer opt(mmh::som::OptimizerParams(), 3.0, 2.0);
   mmh::KinematicState start;

@@ -102,6 +102,23 @@ TEST(SomPlanner, MovingStart) {
   expectVerified(w, start, planner.plan(*w.grid, start, w.target));
 }
 
+// A start at 2.5 m/s straight at the first wall of the S-bend: the plan has to brake for the
+// bend. An initial time allocation that ignores the corners of the path starts the optimiser at
+// full speed through them, and it ends in a local minimum over a_max (verification fails).
+TEST(SomPlanner, MovingStartBrakesForTheBend) {
+  const auto w = som_test::sBend();
+  mmh::som::Planner planner(testParams());
+  for (const double x : {0.0, 0.5}) {
+    for (const double vy : {-1.0, 0.0}) {
+      SCOPED_TRACE("start x " + std::to_string(x) + ", vy " + std::to_string(vy));
+      mmh::KinematicState start = atRest(Vector3d(x, 0.0, 1.2));
+      start.velocity = Vector3d(2.5, vy, 0.0);
+      start.acceleration = Vector3d(0.0, -vy, 0.0);
+      expectVerified(w, start, planner.plan(*w.grid, start, w.target));
+    }
+  }
+}
+
 TEST(SomPlanner, StartInsideTheInflatedMarginEscapes) {
   const auto w = som_test::pillars();
   mmh::som::Planner planner(testParams());
@@ -168,8 +185,7 @@ TEST(SomPlanner, OtherRefusals) {
   // No map.
   EXPECT_EQ(planner.plan(mmh::VoxelGrid(), atRest(w.start), w.target).status, PlanStatus::kNoMap);
   // Already at rest on the target: nothing to plan (moving through it is a real request).
-  EXPECT_EQ(planner.plan(*w.grid, atRest(w.start), w.start).status,
-            PlanStatus::kStartEqualsTarget);
+  EXPECT_EQ(planner.plan(*w.grid, atRest(w.start), w.start).status, PlanStatus::kStartEqualsTarget);
   mmh::KinematicState moving = atRest(w.start);
   moving.velocity = Vector3d(1.0, 0, 0);
   EXPECT_NE(planner.plan(*w.grid, moving, w.start).status, PlanStatus::kStartEqualsTarget);

@@ -28,4 +28,20 @@ std::optional<double> firstCollisionTime(const VoxelGrid& grid, const Trajectory
                                          double t1,
                                          CollisionLayer layer = CollisionLayer::kInflated);
 
+// Distance from p to the centre of the nearest occupied cell, looking no further than limit_m
+// (limit_m when none is nearer). Unknown cells and cells outside the window count as free.
+double occupiedDistance(const VoxelGrid& grid, const Eigen::Vector3d& p, double limit_m);
+
+// A start inside the inflated margin may leave it ("escape"), but only outwards: no point of
+// the way out may come nearer to the occupied cells than the start itself or than floor_m,
+// whichever is less. This is that distance (the start's, capped at floor_m); a point p keeps it
+// when occupiedDistance(grid, p, d) >= d - kEscapeDepthTolerance. Without the rule, a vehicle
+// next to an obstacle was re-planned along it, a little nearer each time, until it touched it.
+double escapeMinDistance(const VoxelGrid& grid, const Eigen::Vector3d& start, double floor_m);
+constexpr double kEscapeDepthTolerance = 0.02;  // m
+inline bool keepsEscapeDistance(const VoxelGrid& grid, const Eigen::Vector3d& p,
+                                double min_distance_m, double tolerance_m = kEscapeDepthTolerance) {
+  return occupiedDistance(grid, p, min_distance_m) >= min_distance_m - tolerance_m;
+}
+
 }  // namespace mmh

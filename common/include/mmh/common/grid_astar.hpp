@@ -21,6 +21,9 @@ struct AStarOptions {
   // When the start lies in the inflated (but not occupied) zone, cells within this distance of it
   // may be crossed so that the vehicle can leave the margin it is in.
   double start_escape_radius_m = 0.0;
+  // ... and only those whose centres keep this distance from the occupied cells (the start cell
+  // itself always may): the way out leads outwards. The same rule as SOM's corridor escape zone.
+  double start_escape_min_distance_m = 0.0;
   // Weight on the heuristic: above 1 the search expands far fewer cells and returns a path at
   // most this factor longer than the shortest (weighted A*); 1 (+ a tie-breaking 1e-3) is exact.
   double heuristic_weight = 1.0;

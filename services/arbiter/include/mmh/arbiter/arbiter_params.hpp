@@ -58,11 +58,11 @@ struct ArbiterParams {
   // A collision the vehicle reaches later than this is not an emergency: the replan then asks the
   // mode awareness picks (SOM/FPM) rather than EAM, which would slow down around it.
   double emergency_horizon_s = 2.0;
-  double stale_map_s = 0.5;          // LOCAL_MAP older than this (message clock) is stale
-  double stale_odometry_s = 0.5;     // ODOMETRY older than this (message clock): no planning
+  double stale_map_s = 0.5;            // LOCAL_MAP older than this (message clock) is stale
+  double stale_odometry_s = 0.5;       // ODOMETRY older than this (message clock): no planning
   double start_escape_radius_m = 0.5;  // an answer starting in the check margin must leave it
                                        // within this distance of its start
-  double narrow_probe_dist_m = 0.8;  // for moving a local target out of obstacles
+  double narrow_probe_dist_m = 0.8;    // for moving a local target out of obstacles
   Eigen::Vector3d geofence_min_m = Eigen::Vector3d(-1e3, -1e3, 0.0);
   Eigen::Vector3d geofence_max_m = Eigen::Vector3d(1e3, 1e3, 1e3);
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "mmh/common/trajectory.hpp"
+#include "mmh/common/voxel_grid.hpp"
 
 namespace mmh::arbiter {
 
@@ -16,5 +17,17 @@ Trajectory makeStoppingTrajectory(const KinematicState& start, double max_acc_mp
 // |a| <= a_max checked exactly.
 Trajectory makeStoppingTrajectory(const Trajectory& path, double t0, double max_acc_mps2,
                                   double max_vel_mps);
+
+// The stop to commit when `path` is to be left at t0 (danger ahead on it): braking along it, so
+// that an avoidance under way is kept, if that stays clearance_m from the occupied cells of
+// `grid`; else whichever of it and the straight stop from the same state keeps more clearance
+// (braking along a path that bends into the obstacle it is stopped for can reach it: a
+// collision at 0.2 obs/m^2). Without a grid, braking along the path.
+Trajectory chooseStoppingTrajectory(const VoxelGrid* grid, const Trajectory& path, double t0,
+                                    double max_acc_mps2, double max_vel_mps, double clearance_m);
+
+// Least distance of the trajectory to the occupied cells' centres (sampled 1 cm apart at most),
+// at most limit_m.
+double minOccupiedDistance(const VoxelGrid& grid, const Trajectory& traj, double limit_m);
 
 }  // namespace mmh::arbiter

@@ -31,11 +31,13 @@ struct CollisionStretch {
 
 // Samples the curve at most step_m apart (a quarter voxel, as the final verification does, or
 // finer). A start inside the inflated margin (not in an occupied cell) may leave it: leading
-// blocked samples within escape_radius_m of the start are not collisions (the same rule as the
+// blocked samples within escape_radius_m of the start that keep escape_min_distance_m from the
+// occupied cells (mmh::keepsEscapeDistance) are not collisions (the same rule as the
 // verification).
 std::vector<CollisionStretch> findCollisionStretches(const UniformBspline& spline,
                                                      const VoxelGrid& grid, double escape_radius_m,
-                                                     double step_m);
+                                                     double step_m,
+                                                     double escape_min_distance_m = 0.0);
 
 // Adds anchor pairs for the free control points [first_free, last_free] that shape the
 // stretch: for each, a blocked probe point x (the control point itself when it is blocked, else

@@ -76,6 +76,9 @@ struct EamParams {
   // A start inside the inflated margin (not in an occupied cell) may cross it this far: the
   // vehicle has to be able to leave the margin a newly mapped obstacle put it in.
   double start_escape_radius_m = 0.3;
+  // ... but only outwards: on the way out no point nearer to the occupied cells than the start,
+  // or than this (whichever is less; see mmh::escapeMinDistance).
+  double start_escape_clearance_m = 0.28;
 };
 
 // Throws ConfigError naming the key when a value is missing or out of range.

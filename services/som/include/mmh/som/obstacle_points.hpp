@@ -18,6 +18,11 @@ namespace mmh::som {
 struct EscapeZone {
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
   double radius = -1.0;  // < 0: none
+  // Only cells whose centres keep this distance from the occupied cells (and the start's own
+  // cell) are free: the way out of the margin leads outwards (mmh::escapeMinDistance).
+  double min_distance = 0.0;
+  // Whether the (inflated, not occupied) cell `local` with centre c is free for the escape.
+  bool frees(const VoxelGrid& grid, const Eigen::Vector3i& local, const Eigen::Vector3d& c) const;
 };
 
 // A byte mask of the blocked cells whose centres lie in a world box (plus a one-cell border, so

@@ -76,6 +76,9 @@ struct SomParams {
   // When the start lies in the inflated margin (not in an obstacle), cells within this distance
   // of it may be crossed, so that the vehicle can leave the margin it is in.
   double start_escape_radius_m = 0.5;
+  // ... but only outwards: no point of the way out nearer to the occupied cells than the start,
+  // or than this (whichever is less; mmh::escapeMinDistance).
+  double start_escape_clearance_m = 0.28;
   CorridorParams corridor;
   OptimizerParams optimizer;
   VerifyParams verify;

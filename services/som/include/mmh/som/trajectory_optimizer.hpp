@@ -32,6 +32,12 @@ struct OptimizerOutput {
   std::string message;
 };
 
+// Initial segment durations along a polyline: a speed profile from v0 (along the first segment)
+// to rest at the end within a and vm that slows down at every corner to sqrt(a r), r the radius
+// of the arc tangent to both segments at half the shorter one.
+std::vector<double> cornerAwareDurations(const std::vector<Eigen::Vector3d>& points, double v0,
+                                         double vm, double a);
+
 // C2 smoothed L1 penalty: 0 for x <= 0, cubic on (0, mu), x - mu/2 beyond; *grad = f'(x).
 double smoothedL1(double x, double mu, double* grad);
 

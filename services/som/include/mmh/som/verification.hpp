@@ -30,6 +30,7 @@ struct VerifyReport {
 VerifyReport verifyTrajectory(const Trajectory& traj, const KinematicState& start,
                               const Eigen::Vector3d& target, const VoxelGrid& grid,
                               const Corridor& corridor, const std::vector<int>& piece_polytope,
-                              double max_vel_mps, double max_acc_mps2, const VerifyParams& params);
+                              double max_vel_mps, double max_acc_mps2, const VerifyParams& params,
+                              double escape_min_distance_m = 0.0);
 
 }  // namespace mmh::som
