@@ -67,3 +67,53 @@ UniformBspline sampleToBspline(const Trajectory& guess, const KinematicState& st
 }
 
 }  // namespace mmh::eam
+
+namespace mmh::eam {
+
+UniformBspline sampleAlongPath(const std::vector<Eigen::Vector3d>& path,
+                               const KinematicState& start, const Eigen::Vector3d& target,
+                               double knot_span_s, double max_vel_mps, double max_acc_mps2,
+                               int min_segments, int max_segments) {
+  std::vector<double> cumulative(1, 0.0);
+  for (size_t k = 1; k < path.size(); ++k)
+    cumulative.push_back(cumulative.back() + (path[k] - path[k - 1]).norm());
+  const double length = cumulative.back();
+  // Speed profile along the path: from the start's speed (at most v_max) up to v_max at a_max,
+  // then down to rest at a_max; a triangle when the path is too short for v_max.
+  const double v0 = std::min(start.velocity.norm(), max_vel_mps);
+  const double a = max_acc_mps2;
+  double vc = max_vel_mps;
+  const double d_full = (vc * vc - v0 * v0) / (2.0 * a) + vc * vc / (2.0 * a);
+  if (d_full > length) vc = std::max(v0, std::sqrt(std::max(0.0, a * length + 0.5 * v0 * v0)));
+  const double t_up = (vc - v0) / a, d_up = (vc * vc - v0 * v0) / (2.0 * a);
+  const double d_down = vc * vc / (2.0 * a), t_down = vc / a;
+  const double d_cruise = std::max(0.0, length - d_up - d_down);
+  const double t_cruise = vc > 0.0 ? d_cruise / vc : 0.0;
+  const double T = std::max(1e-3, t_up + t_cruise + t_down);
+  auto arc = [&](double t) {
+    if (t <= t_up) return v0 * t + 0.5 * a * t * t;
+    if (t <= t_up + t_cruise) return d_up + vc * (t - t_up);
+    const double u = std::min(t - t_up - t_cruise, t_down);
+    return std::min(length, d_up + d_cruise + vc * u - 0.5 * a * u * u);
+  };
+  auto pointAt = [&](double s) {
+    for (size_t k = 0; k + 1 < path.size(); ++k) {
+      const double len = cumulative[k + 1] - cumulative[k];
+      if (s <= cumulative[k + 1] || k + 2 == path.size())
+        return Eigen::Vector3d(
+            path[k] + (path[k + 1] - path[k]) *
+                          (len > 0.0 ? std::clamp((s - cumulative[k]) / len, 0.0, 1.0) : 0.0));
+    }
+    return path.back();
+  };
+  const int K =
+      std::clamp(static_cast<int>(std::ceil(T / knot_span_s - 1e-9)), min_segments, max_segments);
+  const double dt = T / K;
+  Eigen::Matrix3Xd q(3, K + 3);
+  q.leftCols(3) = UniformBspline::startControlPoints(start, dt);
+  for (int i = 3; i < K; ++i) q.col(i) = path.size() < 2 ? target : pointAt(arc((i - 1) * dt));
+  for (int i = K; i < K + 3; ++i) q.col(i) = target;
+  return UniformBspline(q, dt);
+}
+
+}  // namespace mmh::eam

@@ -36,6 +36,9 @@ constexpr double kCollisionBoost = 4.0;
 // factor each time, at most this many per attempt.
 constexpr double kFeasibilityBoost = 10.0;
 constexpr int kMaxFeasibilityRounds = 3;
+// An empty reference whose straight guess collides is replaced by a guess along the A* path
+// from the start to the target when that path is longer than the straight line by this factor.
+constexpr double kPathGuessRatio = 1.2;
 // A re-timing stalled when it removed less than this share of the excess ratio.
 constexpr double kRefineProgress = 0.5;
 
@@ -550,7 +553,38 @@ PlanResult Planner::plan(const VoxelGrid& grid, const PlanRequest& req) {
   const Trajectory guess =
       req.reference.empty() ? straightQuintic(req.start, req.target, P.max_vel_mps, P.max_acc_mps2)
                             : req.reference;
-  const UniformBspline initial = sampleToBspline(guess, req.start, req.target, P.knot_span_s);
+  UniformBspline initial = sampleToBspline(guess, req.start, req.target, P.knot_span_s);
+  const double escape_min_distance =
+      escapeMinDistance(grid, req.start.position, P.start_escape_clearance_m);
+  if (req.reference.empty()) {
+    // The straight guess's duration (and so its number of control points) fits the straight
+    // line. When that line is blocked and the way around is much longer (a narrow passage
+    // behind the start), the rounds bend too few, too widely spaced control points around the
+    // obstacles and every attempt still cuts them. Guess along the A* path instead, with as many
+    // control points as its length needs.
+    const bool blocked =
+        !timed(&r.stats.check_us, [&] {
+           return findCollisionStretches(initial, grid, P.start_escape_radius_m,
+                                         kCheckStep * grid.resolution(), escape_min_distance);
+         }).empty();
+    if (blocked) {
+      GuideStats gs;
+      const double z_lo = std::min(req.start.position.z(), req.target.z());
+      const double z_hi = std::max(req.start.position.z(), req.target.z());
+      const AStarResult path = guides_.find(grid, req.start.position, req.target, z_lo, z_hi, false,
+                                            P.astar_slot_width_m, &gs);
+      r.stats.astar_calls += gs.calls;
+      r.stats.astar_expansions += gs.expansions;
+      r.stats.astar_us += gs.us;
+      if (path.ok() &&
+          pathLength(path.path) > kPathGuessRatio * (req.target - req.start.position).norm()) {
+        initial = sampleAlongPath(shortenPath(grid, path.path), req.start, req.target,
+                                  P.knot_span_s, P.max_vel_mps, P.max_acc_mps2);
+        if (trace_)
+          trace_("guess along the A* path: " + std::to_string(initial.numSegments()) + " segments");
+      }
+    }
+  }
   r.stats.initial_duration_s = initial.duration();
   r.stats.segments = initial.numSegments();
 
@@ -565,8 +599,7 @@ PlanResult Planner::plan(const VoxelGrid& grid, const PlanRequest& req) {
     at.free_mask.assign(initial.numControlPoints(), 0);
     at.check_step = kCheckStep * grid.resolution();
     at.restart = attempt > 0;
-    at.escape_min_distance =
-        escapeMinDistance(grid, req.start.position, P.start_escape_clearance_m);
+    at.escape_min_distance = escape_min_distance;
     r.stats.restarts = attempt;
     r.guide_paths.clear();
     for (;;) {

@@ -249,6 +249,33 @@ TEST(EamPlanner, EmptyReferenceUsesAStraightGuess) {
   EXPECT_EQ(r.reason, FailReason::kNone);
 }
 
+// At rest just before a wall whose only opening is far to the side (the vehicle stopped
+// behind a narrow passage): the way round is over twice the straight line, and a B-spline timed
+// for the straight line has too few control points to bend through the opening. The guess then
+// follows the A* path, with control points for its length.
+TEST(EamPlanner, LongDetourFromRestIsGuessedAlongTheAStarPath) {
+  mmh::VoxelGrid g = eam_test::freeGrid();
+  eam_test::addWallWithGap(g, 1.0, 0.4, 3.0, 1.0);
+  const auto p = params();
+  mmh::eam::Planner planner(p);
+  PlanRequest req;
+  req.start.position = Vector3d(0.2, -3.0, 1.2);
+  req.target = Vector3d(2.0, -3.0, 1.2);
+  const PlanResult r = planner.plan(g, req);
+  expectValid(g, req, r, p);
+  double max_y = -1e9;
+  for (double t = 0.0; t <= r.trajectory.duration(); t += 0.01)
+    max_y = std::max(max_y, r.trajectory.position(t).y());
+  EXPECT_GT(max_y, 2.5);  // through the opening
+  // Rest-to-rest bound along start - opening - target (12.1 m): L / v_max + v_max / a_max.
+  const double bound = ((Vector3d(1.2, 3.0, 1.2) - req.start.position).norm() +
+                        (req.target - Vector3d(1.2, 3.0, 1.2)).norm()) /
+                           p.max_vel_mps +
+                       p.max_vel_mps / p.max_acc_mps2;
+  // Timed for the straight line, the few control points crawled round in 22.9 s.
+  EXPECT_LT(r.trajectory.duration(), 2.5 * bound);
+}
+
 TEST(EamPlanner, CollisionFreeReferenceNeedsNoPairs) {
   mmh::VoxelGrid g = eam_test::freeGrid();
   eam_test::addPillar(g, 5.0, 3.0, 0.3);  // far to the side
