@@ -29,6 +29,12 @@ Eigen::Vector3d PathCurve::pointAt(double s) const {
   return points_[k] + t * (points_[k + 1] - points_[k]);
 }
 
+double PathCurve::segmentEndAfter(double s) const {
+  int k = segmentAt(s);
+  if (segmentEnd(k) <= s + 1e-9 && k + 1 < numSegments()) ++k;
+  return segmentEnd(k);
+}
+
 namespace {
 
 // Arc length at which the path, followed from `from` (inside `poly`), leaves `poly`: exact per
@@ -160,7 +166,10 @@ bool CorridorBuilder::build(const VoxelGrid& grid, const std::vector<Eigen::Vect
       // which is free.
       a = path.pointAt(progress);
       if (!junctions.empty()) junctions.back() = a;
-      seed_s = std::min(progress + params.seed_length_m, path.segmentEnd(path.segmentAt(progress)));
+      // Along the segment that leads on from `progress` (a seed that ended a hair short of a
+      // vertex left `progress` there; the segment ending at the vertex gave no seed and the
+      // corridor "made no progress", a som flight stuck at 0.2 obs/m^2).
+      seed_s = std::min(progress + params.seed_length_m, path.segmentEndAfter(progress));
       if (seed_s <= progress + 1e-9) {
         *why = "the corridor makes no progress along the path";
         return false;

@@ -159,3 +159,17 @@ TEST(Corridor, EmptyPathIsRefused) {
       builder.build(*w.grid, {}, Vector3d(-2, -4, 0.3), Vector3d(14, 4, 2.7), {}, {}, &c, &why));
   EXPECT_FALSE(why.empty());
 }
+
+// The path of a som flight stuck at 0.2 obs/m^2: a seed search stepping back from 3 m ahead in
+// 0.1 m steps ended a hair short of the vertex at 0.871 m, the next seed started there, and
+// the segment ending at that vertex left nothing to seed along ("no progress").
+TEST(PathCurve, SegmentEndAfterAVertexIsTheNextSegments) {
+  const mmh::som::PathCurve path(
+      {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.871, 0, 0), Eigen::Vector3d(0.871, 0.5, 0)});
+  double s = 3.771;
+  for (int i = 0; i < 29; ++i) s -= 0.1;  // ~0.871, not exactly
+  EXPECT_NEAR(path.segmentEndAfter(s), 1.371, 1e-9);
+  EXPECT_NEAR(path.segmentEndAfter(0.871), 1.371, 1e-9);
+  EXPECT_NEAR(path.segmentEndAfter(0.5), 0.871, 1e-9);
+  EXPECT_NEAR(path.segmentEndAfter(1.371), 1.371, 1e-9);  // the end stays the end
+}

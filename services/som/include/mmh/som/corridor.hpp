@@ -60,6 +60,10 @@ class PathCurve {
   int segmentAt(double s) const;
   double segmentStart(int k) const { return cumulative_[k]; }
   double segmentEnd(int k) const { return cumulative_[k + 1]; }
+  // End of the segment that leads on from arc length s: the next segment's when s lies on a
+  // vertex up to rounding (an arc length found by stepping back from farther ahead may fall a
+  // hair short of the vertex, where segmentAt still gives the segment ending there).
+  double segmentEndAfter(double s) const;
   Eigen::Vector3d pointAt(double s) const;
   const Eigen::Vector3d& vertex(int k) const { return points_[k]; }
 
