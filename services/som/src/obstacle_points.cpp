@@ -20,6 +20,10 @@ bool cellRange(const VoxelGrid& grid, const Eigen::Vector3d& lo, const Eigen::Ve
   return true;
 }
 
+namespace {
+constexpr double kFaceInset = 1e-6;  // m
+}  // namespace
+
 bool EscapeZone::frees(const VoxelGrid& grid, const Eigen::Vector3i& local,
                        const Eigen::Vector3d& c) const {
   if (radius <= 0.0 || grid.at(local) == Occupancy::kOccupied) return false;
@@ -31,6 +35,7 @@ bool EscapeZone::frees(const VoxelGrid& grid, const Eigen::Vector3i& local,
 
 bool BlockedMask::build(const VoxelGrid& grid, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
                         const EscapeZone& escape) {
+  escape_faces_.clear();
   Eigen::Vector3i f, l;
   if (!cellRange(grid, lo, hi, &f, &l)) {
     n_.setZero();
@@ -65,8 +70,38 @@ bool BlockedMask::build(const VoxelGrid& grid, const Eigen::Vector3d& lo, const 
           const Eigen::Vector3d c = centerOf(x - 1, y - 1, z - 1);
           if ((c - escape.center).squaredNorm() > r2) continue;
           const Eigen::Vector3i local = f + Eigen::Vector3i(x - 1, y - 1, z - 1);
-          if (escape.frees(grid, local, c)) m = 0;
+          if (escape.frees(grid, local, c)) m = 2;
         }
+    // The faces through the obstacle points may pass through the centres of the blocked cells
+    // next to the freed ones, so a trajectory inside the polytopes could still run half a voxel
+    // into them: nearer to the obstacle than the escape rule allows, into cells that a check
+    // with a smaller margin (the arbiter's 0.25 m) blocks, though the freed cells it keeps to are
+    // clear of it. The centre of each face between a freed cell and a blocked neighbour is an
+    // obstacle point as well, which keeps the polytopes to the freed cells' side of those faces.
+    const Eigen::Vector3i start_cell =
+        grid.localIndexOf(escape.center) - f + Eigen::Vector3i::Ones();
+    const int64_t step[3] = {1, sy_, sz_};
+    for (int z = 1; z < n_.z() + 1; ++z)
+      for (int y = 1; y < n_.y() + 1; ++y)
+        for (int x = 1; x < n_.x() + 1; ++x) {
+          const int64_t i = z * sz_ + y * sy_ + x;
+          if (mask_[i] != 2 || Eigen::Vector3i(x, y, z) == start_cell) continue;
+          const Eigen::Vector3d c = centerOf(x - 1, y - 1, z - 1);
+          for (int axis = 0; axis < 3; ++axis)
+            for (int sign : {-1, 1}) {
+              if (mask_[i + sign * step[axis]] != 1) continue;
+              Eigen::Vector3d n = c;
+              n[axis] += sign * res_;
+              // Only the cells the escape zone keeps blocked (outside it, blocked cells are
+              // obstacle points as anywhere); the point lies a hair inside the blocked cell.
+              if ((n - escape.center).squaredNorm() > r2) continue;
+              Eigen::Vector3d q = c;
+              q[axis] += sign * (0.5 * res_ + kFaceInset);
+              escape_faces_.push_back(q);
+            }
+        }
+    for (uint8_t& m : mask_)
+      if (m == 2) m = 0;
   }
   return true;
 }
@@ -94,6 +129,7 @@ void BlockedMask::surfacePoints(std::vector<Eigen::Vector3d>* out) const {
         if (surface[x] & 1) out->push_back(centerOf(x - 1, y - 1, z - 1));
     }
   }
+  out->insert(out->end(), escape_faces_.begin(), escape_faces_.end());
 }
 
 void BlockedMask::pointsInside(const Polytope& poly, std::vector<Eigen::Vector3d>* out) const {

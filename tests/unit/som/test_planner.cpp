@@ -4,7 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
 
+#include "mmh/common/collision_check.hpp"
+#include "mmh/common/config.hpp"
 #include "mmh/som/planner.hpp"
 #include "som_test_worlds.hpp"
 
@@ -213,4 +219,45 @@ som: {samples_per_piece: 1000})")),
   // The deployment file loads.
   EXPECT_NO_THROW(mmh::som::loadSomParams(
       mmh::Config::loadFile(std::string(MMH_SOURCE_DIR) + "/deploy/config/default.yaml")));
+}
+
+// Stopped in the outer shell of the margin (0.28-0.3 m from the occupied cells) beside a tree of
+// a real flight's map (som at 0.2 obs/m^2, tests/unit/som/data/stuck_flight_cells.txt): the way
+// out slides down along the tree through the cells the escape frees, and the polytopes reached
+// half a voxel into the blocked cells next to them, so the trajectory ran through cells that the
+// arbiter's 0.25 m check blocks and every answer was rejected until the flight timed out.
+TEST(SomPlanner, EscapeFromTheMarginShellKeepsToTheFreedCells) {
+  auto grid = std::make_shared<mmh::VoxelGrid>(0.1, Eigen::Vector3i(130, -35, 0),
+                                               Eigen::Vector3i(80, 60, 30));
+  for (int64_t i = 0; i < grid->numCells(); ++i) grid->setLinear(i, mmh::Occupancy::kFree);
+  std::ifstream file(std::string(MMH_SOURCE_DIR) + "/tests/unit/som/data/stuck_flight_cells.txt");
+  ASSERT_TRUE(file.good());
+  int cells = 0;
+  for (std::string line; std::getline(file, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream in(line);
+    int x = 0, y = 0, z = 0;
+    ASSERT_TRUE(in >> x >> y >> z);
+    const Eigen::Vector3i local =
+        grid->localIndexOf(Vector3d((x + 0.5) * 0.1, (y + 0.5) * 0.1, (z + 0.5) * 0.1));
+    if (grid->inWindow(local)) grid->set(local, mmh::Occupancy::kOccupied);
+    ++cells;
+  }
+  ASSERT_GT(cells, 2000);
+  grid->setInflationRadius(0.3);
+  som_test::World w;
+  w.grid = grid;
+  w.start = Vector3d(14.5047, -0.108633, 2.3587);
+  w.target = Vector3d(19.95, 0.0, 1.2);
+  ASSERT_TRUE(w.grid->isBlockedPoint(w.start));
+  const auto start = atRest(w.start);
+  const auto params = mmh::som::loadSomParams(
+      mmh::Config::loadFile(std::string(MMH_SOURCE_DIR) + "/deploy/config/default.yaml"));
+  const auto out = mmh::som::Planner(params).plan(*w.grid, start, w.target);
+  expectVerified(w, start, out);
+  mmh::VoxelGrid check = *w.grid;
+  check.setInflationRadius(0.25);
+  ASSERT_FALSE(check.isBlockedPoint(w.start));
+  EXPECT_FALSE(mmh::firstCollisionTime(check, out.trajectory, 0.0, out.trajectory.duration()))
+      << "enters the 0.25 m margin";
 }

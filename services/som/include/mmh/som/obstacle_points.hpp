@@ -42,7 +42,10 @@ class BlockedMask {
   Eigen::Vector3d centerOf(int x, int y, int z) const {
     return corner_ + Eigen::Vector3d(x, y, z) * res_;
   }
-  std::vector<uint8_t> mask_;                         // (n + 2) cells per axis, x fastest
+  std::vector<uint8_t> mask_;  // (n + 2) cells per axis, x fastest
+  // Centres of the faces between a cell the escape frees (not the start's own) and a blocked
+  // 6-neighbour: obstacle points too (see build).
+  std::vector<Eigen::Vector3d> escape_faces_;
   Eigen::Vector3i n_ = Eigen::Vector3i::Zero();       // cells of the box per axis
   Eigen::Vector3d corner_ = Eigen::Vector3d::Zero();  // centre of box cell (0, 0, 0)
   double res_ = 0.1;
