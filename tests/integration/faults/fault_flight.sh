@@ -47,17 +47,13 @@ case "$scenario" in
   map-loss-*)
     # Every receiver of LOCAL_MAP lost some and applied the next delta exactly all the same (it
     # repeats the cells of the deltas before it, mapping.delta_repeat).
+    # Gaps longer than the repeat (five losses in a row, about 1 in 400 messages at 30 %) are
+    # detected and healed by the next keyframe in the unit tests (Mapper, LocalMapCodec,
+    # AwarenessNode); a flight may have none.
     for service in mmh-arbiter mmh-som mmh-eam mmh-awareness; do
       checks+=(--expect-counter "$service:test_dropped" --expect-counter "$service:map_losses_bridged")
     done ;;
 esac
-if [ "$scenario" = map-loss-30 ]; then
-  # At 30 % three losses in a row (more than the repeat bridges) come every few seconds: each
-  # receiver notices the gap and waits for the next keyframe.
-  for service in mmh-arbiter mmh-som mmh-eam mmh-awareness; do
-    checks+=(--expect-counter "$service:map_gap")
-  done
-fi
 
 # Only what the check reads (scans and maps would make the log large).
 lcm-logger -c 'ODOMETRY|TRAJECTORY|ARBITER_STATUS|MISSION_STATUS|HEARTBEAT' "$run/flight.lcm" \

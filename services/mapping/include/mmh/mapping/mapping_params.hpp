@@ -13,7 +13,7 @@ struct MappingParams {
   double resolution_m = 0.1;                                         // map.resolution_m
   Eigen::Vector3d window_size_m = Eigen::Vector3d(32.0, 32.0, 4.0);  // map.window_size_m
   double keyframe_period_s = 1.0;  // a whole-window LOCAL_MAP at least this often
-  int delta_repeat = 3;            // a delta holds the cells of this many deltas (>= 1)
+  int delta_repeat = 5;            // a delta holds the cells of this many deltas (>= 1)
   double window_recenter_m = 1.0;  // move the window when the vehicle is this far off its centre
   double max_range_m = 10.0;       // returns beyond this count as free space up to it (crop)
   int64_t max_points = 500000;     // larger scans are rejected
