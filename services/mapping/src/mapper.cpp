@@ -94,9 +94,6 @@ local_map_t Mapper::nextDelta() {
   }
   const int64_t base_seq =
       std::max(last_keyframe_seq_, map_seq_ - static_cast<int64_t>(recent_changes_.size()));
-  if (recent_changes_.size() == 1) {
-    return deltaOf(map_, map_seq_, base_seq, map_.windowChangesOf(recent_changes_.back()));
-  }
   std::vector<int64_t> cells;
   for (const auto& changed : recent_changes_)
     cells.insert(cells.end(), changed.begin(), changed.end());
