@@ -70,7 +70,8 @@ int main(int argc, char** argv) {
                 << ", \"som\": " << r.iterations[2] << ", \"eam\": " << r.iterations[3]
                 << ", \"cost_ms_mean\": " << (iterations ? cost_sum / iterations : 0.0)
                 << ", \"time_bound_s\": " << m.time_bound_s << ", \"stops\": " << r.stops
-                << ", \"wall_time_s\": " << r.wall_time_s << "}\n";
+                << ", \"wall_time_s\": " << r.wall_time_s << ", \"trajectory_digest\": \""
+                << std::hex << r.trajectory_digest << std::dec << "\"}\n";
     } else {
       std::cout << "result:        " << r.end_reason << "\n"
                 << "flight time:   " << m.flight_time_s << " s (bound " << m.time_bound_s << " s)\n"

@@ -119,6 +119,10 @@ struct Vehicle {
     current_mode = msg.source_mode;
     ++record.commits;
     if (msg.source_mode == plan_request_t::MODE_STOP) ++record.stops;
+    std::vector<uint8_t> bytes(static_cast<size_t>(msg.getEncodedSize()));
+    msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+    for (uint8_t b : bytes)
+      record.trajectory_digest = (record.trajectory_digest ^ b) * 1099511628211ull;
   }
   void onStatus(const arbiter_status_t& msg) {
     if (msg.outcome == arbiter_status_t::OUTCOME_FAILED) ++record.failed_decisions;

@@ -55,6 +55,9 @@ struct FlightRecord {
   std::vector<PlanCall> calls;
   std::array<int, 5> iterations{};  // planning calls per mode index
   int commits = 0, stops = 0, failed_decisions = 0;
+  // FNV-1a over the encoded TRAJECTORY messages in order: equal digests mean the same committed
+  // trajectories at the same times, so two builds can be shown to fly identically.
+  uint64_t trajectory_digest = 14695981039346656037ull;
   std::vector<PathSample> path;  // 10 Hz
   double sim_time_s = 0.0;
   double wall_time_s = 0.0;

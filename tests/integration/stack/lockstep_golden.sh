@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Lock-step flights of every arbiter policy (and one with lossy maps) must match the results in
+# lockstep_golden.txt exactly: flight time, distance, energy, planning calls per mode, stops and
+# the digest of every committed trajectory. A restructuring commit must leave them unchanged; a
+# commit that changes behaviour on purpose regenerates the file and says why:
+#   tests/integration/stack/lockstep_golden.sh build --update
+set -euo pipefail
+build=$1
+update=${2:-}
+here=$(cd "$(dirname "$0")" && pwd)
+golden=$here/lockstep_golden.txt
+
+flights=(
+  "--density 0.1 --seed 7"
+  "--density 0.2 --seed 3"
+  "--density 0.05 --seed 11"
+  "--density 0.2 --seed 5 --sensor lidar"
+  "--density 0.1 --seed 7 --policy ego"
+  "--density 0.1 --seed 7 --policy som"
+  "--density 0.1 --seed 7 --policy mmh-no-lazy"
+  "--density 0.1 --seed 7 --policy mmh-no-awareness"
+  "--density 0.1 --seed 9 --map-loss 0.3"
+)
+
+# Everything but the wall-clock fields.
+strip() { sed -E 's/, "(cost_ms_mean|wall_time_s)": [0-9.e+-]+//g'; }
+
+actual=$(mktemp)
+trap 'rm -f "$actual"' EXIT
+for f in "${flights[@]}"; do
+  # shellcheck disable=SC2086
+  json=$("$build/bin/mmh-stack" $f --log-level error --json || true)
+  [ -n "$json" ] || { echo "FAIL: mmh-stack $f printed nothing"; exit 1; }
+  echo "$f | $(echo "$json" | strip)" >>"$actual"
+done
+
+if [ "$update" = "--update" ]; then
+  cp "$actual" "$golden"
+  echo "wrote $golden"
+  exit 0
+fi
+if ! diff -u "$golden" "$actual"; then
+  echo "FAIL: lock-step flights differ from $golden (lines with - are expected, + are now)."
+  echo "If the change of behaviour is intended, regenerate with: $0 BUILD --update"
+  exit 1
+fi
+echo "PASS: ${#flights[@]} lock-step flights identical to $golden"
