@@ -23,14 +23,12 @@ const char* modeName(int mode) {
 
 const char* triggerName(int trigger) {
   static const char* names[] = {"none", "initial", "halfway", "collision",
-                                "goal", "retry",   "fixed",   "deadline"};
-  return trigger >= 0 && trigger <= arbiter_status_t::TRIGGER_DEADLINE ? names[trigger] : "?";
+                                "goal", "retry",   "fixed"};
+  return trigger >= 0 && trigger <= arbiter_status_t::TRIGGER_FIXED ? names[trigger] : "?";
 }
 
 const char* outcomeName(int outcome) {
   switch (outcome) {
-    case arbiter_status_t::OUTCOME_PENDING:
-      return "pending";
     case arbiter_status_t::OUTCOME_COMMITTED:
       return "committed";
     case arbiter_status_t::OUTCOME_FAILED:

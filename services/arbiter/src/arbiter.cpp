@@ -10,17 +10,8 @@
 namespace mmh::arbiter {
 namespace {
 
-constexpr double kUs = 1e-6;  // seconds per microsecond
-// The planners keep mmh::kEscapeDepthTolerance on their own samples; this check samples in
-// time (1 cm of time, up to 3 cm apart at v_max), so it allows a little more between them.
-constexpr double kArbiterEscapeDepthTolerance = 0.03;  // m
-
-bool usesAwareness(Policy p) {
-  return p == Policy::kMmh || p == Policy::kMmhNoLazy;
-}
-bool usesLazyRules(Policy p) {
-  return p == Policy::kMmh || p == Policy::kMmhNoAwareness;
-}
+constexpr double kUs = 1e-6;                 // seconds per microsecond
+constexpr double kSameGoalDistanceM = 1e-6;  // a goal message repeated, not a moved goal
 
 int modeIndex(Mode m) {
   return static_cast<int>(m);
@@ -28,19 +19,19 @@ int modeIndex(Mode m) {
 
 }  // namespace
 
-Arbiter::Arbiter(const ArbiterParams& params) : params_(params) {}
+Arbiter::Arbiter(const ArbiterParams& params) : params_(params), chain_(params.policy) {}
 
 bool Arbiter::mapStale(int64_t now) const {
   return map_seq_ == 0 || (now - map_utime_) * kUs > params_.stale_map_s;
 }
 
 bool Arbiter::odometryStale(int64_t now) const {
-  return have_odometry_ && (now - odometry_utime_) * kUs > params_.stale_odometry_s;
+  return odometry_ && (now - odometry_utime_) * kUs > params_.stale_odometry_s;
 }
 
 bool Arbiter::setGoal(int64_t goal_id, const Eigen::Vector3d& goal, int64_t now, std::string* why) {
   now_ = std::max(now_, now);
-  if (goal_ && goal_id == goal_id_ && (goal - *goal_).norm() < 1e-6) {  // repeat
+  if (hasGoal() && goal_id == goal_.id && (goal - goal_.position).norm() < kSameGoalDistanceM) {
     evaluate(now_);  // its clock may show that ODOMETRY stopped
     return true;
   }
@@ -60,21 +51,15 @@ bool Arbiter::setGoal(int64_t goal_id, const Eigen::Vector3d& goal, int64_t now,
     return refuse("outside the geofence");
   }
   if (grid_ && grid_->isOccupiedPoint(goal)) return refuse("inside a mapped obstacle");
-  goal_ = goal;
-  goal_id_ = goal_id;
-  goal_changed_ = true;
-  reached_ = false;
-  last_failed_ = false;
-  tried_modes_ = 0;
+  goal_ = Goal{goal_id, goal};
+  phase_ = Phase::kNewGoal;
+  chain_.reset();
   evaluate(now_);
   return true;
 }
 
 void Arbiter::setAwareness(bool safe, int8_t reason, int64_t goal_id, int64_t /*map_seq*/) {
-  have_awareness_ = true;
-  awareness_safe_ = safe;
-  awareness_reason_ = reason;
-  awareness_goal_id_ = goal_id;
+  awareness_ = Awareness{safe, reason, goal_id};
 }
 
 void Arbiter::onMapUpdated(const VoxelGrid& grid, int64_t map_seq, int64_t map_utime, int64_t now) {
@@ -85,16 +70,14 @@ void Arbiter::onMapUpdated(const VoxelGrid& grid, int64_t map_seq, int64_t map_u
   if (stopped_for_stale_map_ && !mapStale(now_)) stopped_for_stale_map_ = false;
   // Rule (2): a newly mapped obstacle on the rest of the committed trajectory.
   double eta_s = 0.0;
-  if (hasCommitted() && !pending_ && !reached_ && collisionThreat(now_, &eta_s)) {
-    collision_eta_s_ = collision_detected_ ? std::min(collision_eta_s_, eta_s) : eta_s;
-    collision_detected_ = true;
+  if (hasCommitted() && !round_ && phase_ != Phase::kReached && collisionThreat(now_, &eta_s)) {
+    collision_eta_s_ = collision_eta_s_ ? std::min(*collision_eta_s_, eta_s) : eta_s;
   }
   evaluate(now_);
 }
 
 void Arbiter::onOdometry(const KinematicState& state, int64_t now) {
   odometry_ = state;
-  have_odometry_ = true;
   odometry_utime_ = std::max(odometry_utime_, now);
   now_ = std::max(now_, now);
   if (stopped_for_stale_odometry_ && !odometryStale(now_)) stopped_for_stale_odometry_ = false;
@@ -106,117 +89,91 @@ void Arbiter::onAnswer(const ModeAnswer& answer, int64_t now) {
   if (answer.mode >= Mode::kFpm && answer.mode <= Mode::kEam) {
     ++counters_.iterations[modeIndex(answer.mode)];
   }
-  if (!pending_) {
+  if (!round_) {
     ++counters_.late_answers;
     return;
   }
   bool known = false;
-  for (const auto& r : pending_->requests) {
+  for (const auto& r : round_->requests) {
     known |= (r.request_id == answer.request_id && r.mode == answer.mode);
   }
   bool duplicate = false;
-  for (const auto& a : pending_->answers) duplicate |= (a.request_id == answer.request_id);
+  for (const auto& a : round_->answers) duplicate |= (a.request_id == answer.request_id);
   if (!known || duplicate) {
     ++counters_.late_answers;
     return;
   }
-  pending_->answers.push_back(answer);
-  if (pending_->answers.size() == pending_->requests.size()) decide(now_, false);
+  round_->answers.push_back(answer);
+  if (round_->answers.size() == round_->requests.size()) decide(now_, false);
+}
+
+Eigen::Vector3d Arbiter::vehiclePosition() const {
+  return odometry_ ? odometry_->position : Eigen::Vector3d::Zero();
 }
 
 KinematicState Arbiter::stateAt(int64_t utime) const {
-  if (hasCommitted()) return committed_.state((utime - committed_start_) * kUs);
+  if (hasCommitted()) return committed_.trajectory.state((utime - committed_.start_utime) * kUs);
   KinematicState hold;
-  hold.position = odometry_.position;
+  hold.position = vehiclePosition();
   return hold;
 }
 
 bool Arbiter::collisionAhead(int64_t now) const {
   if (!grid_ || !hasCommitted()) return false;
-  const double t0 = std::max(0.0, (now - committed_start_) * kUs);
-  return firstCollisionTime(*grid_, committed_, t0, committed_.duration()).has_value();
+  const Trajectory& t = committed_.trajectory;
+  const double t0 = std::max(0.0, (now - committed_.start_utime) * kUs);
+  return firstCollisionTime(*grid_, t, t0, t.duration()).has_value();
 }
 
 bool Arbiter::collisionThreat(int64_t now, double* eta_s) const {
   if (!grid_ || !hasCommitted()) return false;
-  const double elapsed = std::max(0.0, (now - committed_start_) * kUs);
-  const auto hit = firstCollisionTime(*grid_, committed_, elapsed, committed_.duration());
+  const Trajectory& t = committed_.trajectory;
+  const double elapsed = std::max(0.0, (now - committed_.start_utime) * kUs);
+  const auto hit = firstCollisionTime(*grid_, t, elapsed, t.duration());
   if (!hit) return false;
-  if (eta_s) *eta_s = *hit - elapsed;
-  // The halfway replan plans with this map before the vehicle gets there: leave it to it.
-  const bool halfway_replan_pending = usesLazyRules(params_.policy) && !committed_ends_at_goal_ &&
-                                      elapsed < 0.5 * committed_.duration();
-  if (params_.defer_far_collisions && halfway_replan_pending &&
-      *hit > 0.5 * committed_.duration() + params_.collision_margin_s) {
-    return false;
-  }
-  return true;
+  *eta_s = *hit - elapsed;
+  return collisionNeedsRoundNow(*hit, elapsed, t.duration(), committed_.ends_at_goal, params_);
 }
 
-Trigger Arbiter::nextTrigger(int64_t now) const {
-  if (goal_changed_) return hasCommitted() ? Trigger::kGoalChanged : Trigger::kInitial;
-  // After a failed round the fallback chain goes on (a collision seen again on the next map must
-  // not restart it with EAM forever, never reaching SOM or the stop).
-  const bool can_retry = last_failed_ && !chooseModes(Trigger::kRetry).empty();
-  if (collision_detected_ && !can_retry) return Trigger::kCollision;
-  if (last_failed_) return can_retry ? Trigger::kRetry : Trigger::kNone;
-  if (!hasCommitted()) return Trigger::kInitial;
-  const double elapsed = (now - committed_start_) * kUs;
-  if (usesLazyRules(params_.policy)) {
-    // Rule (1): past the halfway point, unless this trajectory already ends at the goal.
-    if (!committed_ends_at_goal_ && elapsed > 0.5 * committed_.duration()) return Trigger::kHalfway;
-  } else {
-    const double to_goal = (odometry_.position - *goal_).norm();
-    if ((odometry_.position - last_plan_position_).norm() >= params_.fixed_replan_distance_m &&
-        to_goal > params_.fixed_replan_distance_m) {
-      return Trigger::kFixed;
-    }
-    if (!committed_ends_at_goal_ && elapsed > committed_.duration()) return Trigger::kFixed;
-  }
-  return Trigger::kNone;
+ReplanView Arbiter::replanView(int64_t now) const {
+  ReplanView v;
+  v.phase = phase_;
+  v.has_committed = hasCommitted();
+  v.committed_ends_at_goal = committed_.ends_at_goal;
+  v.committed_elapsed_s = (now - committed_.start_utime) * kUs;
+  v.committed_duration_s = committed_.trajectory.duration();
+  v.collision_eta_s = collision_eta_s_;
+  v.awareness_safe = awareness_ ? awareness_->safe : true;
+  v.flown_since_last_round_m = (vehiclePosition() - last_round_position_).norm();
+  v.to_goal_m = (vehiclePosition() - goal_.position).norm();
+  v.retry_mode = chain_.next(map_seq_);
+  return v;
 }
 
-std::vector<Mode> Arbiter::chooseModes(Trigger trigger) const {
-  const Policy p = params_.policy;
-  if (trigger == Trigger::kRetry) {
-    // Fallback chain: the next mode not yet asked since the last commit; once all were asked,
-    // only a new map can change the answer, so the chain starts again only then.
-    std::vector<Mode> chain{Mode::kSom, Mode::kEam};
-    if (p == Policy::kEgo) chain = {Mode::kEam};
-    if (p == Policy::kSom) chain = {Mode::kSom};
-    for (Mode m : chain) {
-      if (!(tried_modes_ & modeBit(m))) return {m};
-    }
-    if (map_seq_ != map_seq_at_failure_) return {chain.front()};
-    return {};
-  }
-  if (p == Policy::kEgo) return {Mode::kEam};
-  if (p == Policy::kSom) return {Mode::kSom};
-  const bool emergency = collision_eta_s_ <= params_.emergency_horizon_s;
-  if (trigger == Trigger::kCollision && (emergency || !usesAwareness(p))) {
-    if (params_.parallel_modes != ParallelModes::kNone) return {Mode::kEam, Mode::kSom};
-    return {Mode::kEam};
-  }
-  const bool safe = usesAwareness(p) ? awareness_safe_ : false;
-  if (safe) return {Mode::kFpm};
-  if (params_.parallel_modes == ParallelModes::kAlways) return {Mode::kSom, Mode::kEam};
-  return {Mode::kSom};
+StopView Arbiter::stopView(int64_t now) const {
+  StopView v;
+  v.has_committed = hasCommitted();
+  v.committed_is_stop = committed_.mode == Mode::kStop;
+  v.odometry_speed_mps = odometry_ ? odometry_->velocity.norm() : 0.0;
+  v.planned_speed_mps = stateAt(now).velocity.norm();
+  v.stopped_for_stale_map = stopped_for_stale_map_;
+  return v;
 }
 
 void Arbiter::evaluate(int64_t now) {
-  if (!goal_ || !have_odometry_) return;
-  if (pending_) {
-    if (now > pending_->deadline_utime) decide(now, true);
+  if (!hasGoal() || !odometry_) return;
+  if (round_) {
+    if (now > round_->deadline_utime) decide(now, true);
     return;
   }
-  if (reached_) return;
+  if (phase_ == Phase::kReached) return;
   if (odometryStale(now)) {
     onStaleOdometry(now);
     return;
   }
-  if ((odometry_.position - *goal_).norm() <= params_.goal_tolerance_m &&
-      (!hasCommitted() || committed_ends_at_goal_)) {
-    reached_ = true;
+  if (goalReached((vehiclePosition() - goal_.position).norm(), hasCommitted(),
+                  committed_.ends_at_goal, params_)) {
+    phase_ = Phase::kReached;
     DecisionOut d;
     d.outcome = Outcome::kReached;
     d.detail = "goal reached";
@@ -225,151 +182,84 @@ void Arbiter::evaluate(int64_t now) {
   }
   // A planner needs a map; awareness-driven policies also wait for an awareness of this goal.
   if (mapStale(now)) {
-    if (hasCommitted() && !stopped_for_stale_map_ && odometry_.velocity.norm() > 0.05) {
+    if (shouldStop(StopCause::kStaleMap, stopView(now), params_)) {
       stopped_for_stale_map_ = true;
       commitStop(now, "LOCAL_MAP is stale: stopping until maps return", Trigger::kNone);
     }
     return;
   }
-  if (usesAwareness(params_.policy) && (!have_awareness_ || awareness_goal_id_ != goal_id_)) {
-    return;
-  }
-  const Trigger trigger = nextTrigger(now);
+  if (usesAwareness(params_.policy) && (!awareness_ || awareness_->goal_id != goal_.id)) return;
+  const ReplanView view = replanView(now);
+  const Trigger trigger = nextTrigger(view, params_);
   if (trigger == Trigger::kNone) return;
-  const bool braking = committed_mode_ == Mode::kStop && odometry_.velocity.norm() > 0.1;
-  // (A collision on the stop itself is not throttled: only an evasive plan can help then.)
-  if (braking && trigger == Trigger::kRetry &&
-      (now - last_round_utime_) * kUs < params_.stop_retry_period_s) {
-    return;
-  }
-  const std::vector<Mode> modes = chooseModes(trigger);
+  const bool braking_in_stop =
+      committed_.mode == Mode::kStop && odometry_->velocity.norm() > params_.braking_speed_mps;
+  if (retryThrottled(trigger, braking_in_stop, (now - last_round_utime_) * kUs, params_)) return;
+  const std::vector<Mode> modes = modesFor(trigger, view, params_);
   if (modes.empty()) return;
-  if (trigger == Trigger::kRetry && (tried_modes_ & modeBit(modes.front()))) {
-    tried_modes_ = 0;  // a new map: the chain starts again
-  }
-  startPlanning(trigger, modes, now);
+  if (trigger == Trigger::kRetry) chain_.beginRetry(modes.front());
+  startRound(trigger, modes, now);
 }
 
-void Arbiter::startPlanning(Trigger trigger, const std::vector<Mode>& modes, int64_t now) {
-  if (trigger != Trigger::kRetry) tried_modes_ = 0;  // a new episode of attempts
+void Arbiter::startRound(Trigger trigger, const std::vector<Mode>& modes, int64_t now) {
+  if (trigger != Trigger::kRetry) chain_.reset();  // a new episode of attempts
   last_round_utime_ = now;
-  Pending p;
-  p.trigger = trigger;
-  p.start_utime = now + static_cast<int64_t>(params_.replan_lead_s * 1e6);
-  p.deadline_utime = now + static_cast<int64_t>(params_.answer_deadline_s * 1e6);
-  p.start = stateAt(p.start_utime);
-  Trajectory reference;
+  Round round;
+  round.trigger = trigger;
+  round.start.start_utime = now + static_cast<int64_t>(params_.replan_lead_s * 1e6);
+  round.deadline_utime = now + static_cast<int64_t>(params_.answer_deadline_s * 1e6);
+  round.start.state = stateAt(round.start.start_utime);
   // EAM on a collision re-optimises the rest of the committed trajectory, ending where it ends,
   // unless that end itself is now inside an obstacle (with the planners' margin, which is wider
   // than the arbiter's own check: EAM refuses a target inside it).
+  const Trajectory& committed = committed_.trajectory;
+  const double start_s = (round.start.start_utime - committed_.start_utime) * kUs;
+  const bool end_clear =
+      hasCommitted() && grid_ &&
+      isClearOf(*grid_, committed.position(committed.duration()), params_.inflation_m);
   const bool use_reference =
-      trigger == Trigger::kCollision && hasCommitted() && grid_ &&
-      isClearOf(*grid_, committed_.position(committed_.duration()), params_.inflation_m) &&
-      (p.start_utime - committed_start_) * kUs < committed_.duration() - 0.2;
+      collisionKeepsReference(trigger, end_clear, start_s, committed.duration(), params_);
+  Trajectory reference;
   if (use_reference) {
-    reference = committed_.tail((p.start_utime - committed_start_) * kUs);
-    p.target = committed_.position(committed_.duration());
-    p.target_is_goal = committed_ends_at_goal_;
+    reference = committed.tail(start_s);
+    round.target = committed.position(committed.duration());
+    round.target_is_goal = committed_.ends_at_goal;
   } else {
-    const LocalTarget lt =
-        chooseLocalTarget(grid_, p.start.position, *goal_, params_.horizonDistance(),
-                          params_.geofence_min_m, params_.geofence_max_m, params_.inflation_m);
-    p.target = lt.position;
-    p.target_is_goal = lt.is_goal;
+    const LocalTarget lt = chooseLocalTarget(grid_, round.start.state.position, goal_.position,
+                                             params_.horizonDistance(), params_.geofence_min_m,
+                                             params_.geofence_max_m, params_.inflation_m);
+    round.target = lt.position;
+    round.target_is_goal = lt.is_goal;
   }
   for (Mode m : modes) {
     PlanRequestOut r;
     r.request_id = next_request_id_++;
     r.mode = m;
     r.trigger = trigger;
-    r.start_utime = p.start_utime;
-    r.start = p.start;
-    r.deadline_utime = p.deadline_utime;
+    r.start_utime = round.start.start_utime;
+    r.start = round.start.state;
+    r.deadline_utime = round.deadline_utime;
     r.map_seq = map_seq_;
-    r.target = p.target;
-    r.goal = *goal_;
+    r.target = round.target;
+    r.goal = goal_.position;
     if (m == Mode::kEam && use_reference) r.reference = reference;
-    tried_modes_ |= modeBit(m);
-    p.requests.push_back(r);
+    chain_.markAsked(m);
+    round.requests.push_back(r);
     requests_.push_back(r);
   }
-  last_plan_position_ = odometry_.position;
-  collision_detected_ = false;
-  goal_changed_ = false;
-  pending_ = std::move(p);
+  last_round_position_ = vehiclePosition();
+  collision_eta_s_.reset();
+  if (phase_ == Phase::kNewGoal) phase_ = Phase::kTracking;
+  round_ = std::move(round);
 }
 
-bool Arbiter::verifyAnswer(const ModeAnswer& a, std::string* why) const {
-  auto fail = [&](const std::string& text) {
-    if (why) *why = text;
-    return false;
-  };
-  const Trajectory& t = a.trajectory;
-  if (t.empty() || !t.isFinite()) return fail("empty or non-finite trajectory");
-  if (t.duration() > params_.max_answer_duration_s)
-    return fail("longer than max_answer_duration_s");
-  if (a.start_utime != pending_->start_utime) return fail("wrong start time");
-  const KinematicState s0 = t.state(0.0);
-  // Continuity: the new trajectory must take over the committed one without a jump.
-  if ((s0.position - pending_->start.position).norm() > 1e-3 ||
-      (s0.velocity - pending_->start.velocity).norm() > 1e-2 ||
-      (s0.acceleration - pending_->start.acceleration).norm() > 5e-2) {
-    return fail("does not start at the requested state");
-  }
-  const double tol = 1.0 + params_.answer_speed_tolerance;
-  const double start_speed = pending_->start.velocity.norm();
-  if (t.maxSpeed() > std::max(params_.max_vel_mps, start_speed) * tol) return fail("too fast");
-  if (t.maxAcceleration() > params_.max_acc_mps2 * tol) {
-    // A braking start may exceed a_max briefly only if it already did.
-    if (t.maxAcceleration() >
-        std::max(params_.max_acc_mps2, pending_->start.acceleration.norm()) * tol)
-      return fail("accelerates too hard");
-  }
-  for (double time = 0.0; time <= t.duration(); time += 0.05) {
-    const Eigen::Vector3d p = t.position(time);
-    if ((p.array() < params_.geofence_min_m.array() - 0.05).any() ||
-        (p.array() > params_.geofence_max_m.array() + 0.05).any()) {
-      return fail("leaves the geofence");
-    }
-  }
-  double clear_from = 0.0;
-  if (grid_ && isPointBlocked(*grid_, s0.position)) {
-    // A start inside the margin (e.g. stopped next to a newly mapped obstacle) may leave it, as
-    // the planners allow: through no occupied voxel, out of the margin near the start.
-    if (firstCollisionTime(*grid_, t, 0.0, t.duration(), CollisionLayer::kOccupied)) {
-      return fail("enters an obstacle");
-    }
-    // Outwards only: never nearer to the occupied cells than the start (or than the check
-    // margin), or a vehicle next to an obstacle is re-planned along it until it touches it.
-    const double min_distance = escapeMinDistance(*grid_, s0.position, params_.check_inflation_m);
-    while (clear_from < t.duration() && isPointBlocked(*grid_, t.position(clear_from))) {
-      if (!keepsEscapeDistance(*grid_, t.position(clear_from), min_distance,
-                               kArbiterEscapeDepthTolerance)) {
-        return fail("goes deeper into the obstacle margin it starts in");
-      }
-      clear_from += 0.01;
-    }
-    if ((t.position(clear_from) - s0.position).norm() > params_.start_escape_radius_m) {
-      return fail("does not leave the obstacle margin near its start");
-    }
-  }
-  if (grid_ && firstCollisionTime(*grid_, t, clear_from, t.duration()).has_value()) {
-    return fail("collides with the arbiter's map");
-  }
-  return true;
-}
-
-double Arbiter::score(const Trajectory& t) const {
-  // Estimated time to the goal: this trajectory, then the straight rest at full speed.
-  return t.duration() + (*goal_ - t.position(t.duration())).norm() / params_.max_vel_mps;
+void Arbiter::enterPhase(Phase phase) {
+  if (phase_ != Phase::kNewGoal) phase_ = phase;
 }
 
 void Arbiter::commit(const Trajectory& trajectory, int64_t start_utime, Mode mode,
                      bool ends_at_goal) {
-  committed_ = trajectory;
-  committed_start_ = start_utime;
-  committed_mode_ = mode;
-  committed_ends_at_goal_ = ends_at_goal;
+  committed_ = Committed{trajectory, start_utime, mode, ends_at_goal};
   CommitOut c;
   c.trajectory_id = next_trajectory_id_++;
   c.start_utime = start_utime;
@@ -383,14 +273,14 @@ void Arbiter::commitStop(int64_t now, const std::string& why, Trigger trigger) {
   const int64_t start = now + static_cast<int64_t>(params_.replan_lead_s * 1e6);
   const Trajectory stop =
       hasCommitted()
-          ? chooseStoppingTrajectory(grid_, committed_, (start - committed_start_) * kUs,
-                                     params_.max_acc_mps2, params_.max_vel_mps,
-                                     params_.check_inflation_m)
+          ? chooseStoppingTrajectory(grid_, committed_.trajectory,
+                                     (start - committed_.start_utime) * kUs, params_.max_acc_mps2,
+                                     params_.max_vel_mps, params_.check_inflation_m)
           : makeStoppingTrajectory(stateAt(start), params_.max_acc_mps2, params_.max_vel_mps);
   commit(stop, start, Mode::kStop, false);
   // Braking is not a plan: keep trying the modes, from the next map on.
-  last_failed_ = true;
-  map_seq_at_failure_ = map_seq_;
+  enterPhase(Phase::kRecovering);
+  chain_.recordFailure(map_seq_);
   ++counters_.stops;
   DecisionOut d;
   d.trigger = trigger;
@@ -403,38 +293,40 @@ void Arbiter::commitStop(int64_t now, const std::string& why, Trigger trigger) {
 }
 
 void Arbiter::decide(int64_t now, bool by_deadline) {
-  Pending p = std::move(*pending_);
-  pending_.reset();
+  Round round = std::move(*round_);
+  round_.reset();
   DecisionOut d;
-  d.trigger = p.trigger;
-  d.local_target = p.target;
-  d.request_id = p.requests.empty() ? 0 : p.requests.front().request_id;
-  for (const auto& r : p.requests) d.modes_asked |= modeBit(r.mode);
-  if (by_deadline) counters_.unanswered += static_cast<int>(p.requests.size() - p.answers.size());
+  d.trigger = round.trigger;
+  d.local_target = round.target;
+  d.request_id = round.requests.empty() ? 0 : round.requests.front().request_id;
+  for (const auto& r : round.requests) d.modes_asked |= modeBit(r.mode);
+  if (by_deadline) {
+    counters_.unanswered += static_cast<int>(round.requests.size() - round.answers.size());
+  }
 
   const ModeAnswer* best = nullptr;
   double best_score = 0.0;
   std::string notes;
-  for (const ModeAnswer& a : p.answers) {
+  for (const ModeAnswer& a : round.answers) {
     d.compute_us[modeIndex(a.mode)] = a.compute_us;
     if (!a.ok) {
       notes += std::string(toString(a.mode)) + " failed (" + a.detail + "); ";
       continue;
     }
     std::string why;
-    if (!verifyAnswer(a, &why)) {
+    if (!checkAnswer(a.trajectory, a.start_utime, round.start, grid_, params_, &why)) {
       ++counters_.rejected_answers;
       notes += std::string(toString(a.mode)) + " rejected: " + why + "; ";
       continue;
     }
     d.modes_ok |= modeBit(a.mode);
-    const double s = score(a.trajectory);
+    const double s = answerScore(a.trajectory, goal_.position, params_);
     if (!best || s < best_score) {
       best = &a;
       best_score = s;
     }
   }
-  if (best && now > p.start_utime) {
+  if (best && now > round.start.start_utime) {
     notes += "answer came after its start time; ";
     best = nullptr;
   }
@@ -444,9 +336,9 @@ void Arbiter::decide(int64_t now, bool by_deadline) {
     best = nullptr;
   }
   if (best) {
-    commit(best->trajectory, p.start_utime, best->mode, p.target_is_goal);
-    last_failed_ = false;
-    tried_modes_ = 0;
+    commit(best->trajectory, round.start.start_utime, best->mode, round.target_is_goal);
+    enterPhase(Phase::kTracking);
+    chain_.reset();
     d.outcome = Outcome::kCommitted;
     d.committed_mode = best->mode;
     d.trajectory_id = commit_->trajectory_id;
@@ -455,19 +347,20 @@ void Arbiter::decide(int64_t now, bool by_deadline) {
     return;
   }
   ++counters_.failures;
-  last_failed_ = true;
-  map_seq_at_failure_ = map_seq_;
-  if (by_deadline && p.answers.size() < p.requests.size()) notes += "no answer by the deadline; ";
+  enterPhase(Phase::kRecovering);
+  chain_.recordFailure(map_seq_);
+  if (by_deadline && round.answers.size() < round.requests.size()) {
+    notes += "no answer by the deadline; ";
+  }
   d.outcome = Outcome::kFailed;
   d.detail = notes;
-  // Danger ahead and nothing left to try: brake now rather than fly into it.
-  const bool danger = collisionAhead(now);
-  const bool out_of_modes = chooseModes(Trigger::kRetry).empty();
+  StopView stop = stopView(now);
+  stop.danger_ahead = collisionAhead(now);
+  stop.fallback_exhausted = chain_.exhausted();
+  stop.by_deadline = by_deadline;
   pushDecision(d);
-  // A stop already under way brakes as hard as a new one would: recommitting it only resets it.
-  const bool braking = committed_mode_ == Mode::kStop;
-  if (danger && !braking && (out_of_modes || by_deadline)) {
-    commitStop(now, "no usable answer and danger ahead: " + notes, p.trigger);
+  if (shouldStop(StopCause::kNoUsableAnswer, stop, params_)) {
+    commitStop(now, "no usable answer and danger ahead: " + notes, round.trigger);
   }
 }
 
@@ -477,8 +370,7 @@ void Arbiter::onStaleOdometry(int64_t now) {
   ++counters_.stale_odometry;
   const std::string why = "ODOMETRY is stale (" + std::to_string((now - odometry_utime_) / 1000) +
                           " ms old): no planning until it returns";
-  // The stop continues the committed trajectory, not the stale odometry.
-  if (hasCommitted() && committed_mode_ != Mode::kStop && stateAt(now).velocity.norm() > 0.05) {
+  if (shouldStop(StopCause::kStaleOdometry, stopView(now), params_)) {
     commitStop(now, why + "; stopping", Trigger::kNone);
     return;
   }
@@ -491,9 +383,9 @@ void Arbiter::onStaleOdometry(int64_t now) {
 void Arbiter::pushDecision(DecisionOut d) {
   d.decision_seq = next_decision_seq_++;
   d.utime = now_;
-  d.awareness_safe = awareness_safe_;
-  d.awareness_reason = awareness_reason_;
-  d.position = odometry_.position;
+  d.awareness_safe = awareness_ ? awareness_->safe : true;
+  d.awareness_reason = awareness_ ? awareness_->reason : 0;
+  d.position = vehiclePosition();
   ++counters_.decisions;
   decisions_.push_back(std::move(d));
 }

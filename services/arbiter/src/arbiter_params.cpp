@@ -86,7 +86,19 @@ ArbiterParams loadArbiterParams(const Config& config) {
   p.max_answer_duration_s = config.getDouble("arbiter.max_answer_duration_s", 1.0, 3600.0);
   p.defer_far_collisions = config.getBool("arbiter.defer_far_collisions");
   p.collision_margin_s = config.getDouble("arbiter.collision_margin_s", 0.0, 30.0);
-  p.narrow_probe_dist_m = config.getDouble("awareness.narrow_probe_dist_m", 0.05, 10.0);
+  p.replan_fraction = config.getDouble("arbiter.replan_fraction", 0.05, 1.0);
+  p.reference_min_remaining_s = config.getDouble("arbiter.reference_min_remaining_s", 0.0, 10.0);
+  p.stop_min_speed_mps = config.getDouble("arbiter.stop_min_speed_mps", 0.0, 1.0);
+  p.braking_speed_mps = config.getDouble("arbiter.braking_speed_mps", 0.0, 1.0);
+  p.start_position_tolerance_m = config.getDouble("arbiter.start_position_tolerance_m", 0.0, 0.1);
+  p.start_velocity_tolerance_mps =
+      config.getDouble("arbiter.start_velocity_tolerance_mps", 0.0, 1.0);
+  p.start_acceleration_tolerance_mps2 =
+      config.getDouble("arbiter.start_acceleration_tolerance_mps2", 0.0, 5.0);
+  p.check_step_s = config.getDouble("arbiter.check_step_s", 0.001, 0.5);
+  p.geofence_tolerance_m = config.getDouble("arbiter.geofence_tolerance_m", 0.0, 1.0);
+  p.escape_step_s = config.getDouble("arbiter.escape_step_s", 0.001, 0.1);
+  p.escape_depth_tolerance_m = config.getDouble("arbiter.escape_depth_tolerance_m", 0.0, 0.2);
   p.geofence_min_m = config.getVector3("geofence.min_m", -1e5, 1e5);
   p.geofence_max_m = config.getVector3("geofence.max_m", -1e5, 1e5);
   if ((p.geofence_max_m.array() <= p.geofence_min_m.array()).any()) {

@@ -34,16 +34,12 @@ const char* toString(Trigger trigger) {
       return "retry";
     case Trigger::kFixed:
       return "fixed-distance";
-    case Trigger::kDeadline:
-      return "deadline";
   }
   return "?";
 }
 
 const char* toString(Outcome outcome) {
   switch (outcome) {
-    case Outcome::kPending:
-      return "pending";
     case Outcome::kCommitted:
       return "committed";
     case Outcome::kFailed:

@@ -8,7 +8,7 @@ namespace mmh {
 
 const char* modeName(int mode);        // "-", "FPM", "SOM", "EAM", "STOP" ("?" if unknown)
 const char* triggerName(int trigger);  // "none", "initial", "halfway", ... ("?" if unknown)
-const char* outcomeName(int outcome);  // "pending", "committed", ... ("?" if unknown)
+const char* outcomeName(int outcome);  // "committed", "failed", ... ("?" if unknown)
 std::string modesMaskName(int mask);   // bit mask 1 << MODE_*: "SOM+EAM", "-" if none
 
 }  // namespace mmh

@@ -1,7 +1,9 @@
 // The mode arbiter (paper Sec. III.A and III.D): holds the goal and the committed trajectory,
-// decides when to replan (lazy rules) and which modes to ask, picks the best verified answer,
-// and keeps the vehicle on a continuous, safe trajectory (a stopping one at worst).
-// No LCM here: the node feeds events in and publishes what comes out.
+// starts planning rounds, picks the best verified answer, and keeps the vehicle on a continuous,
+// safe trajectory (a stopping one at worst). The policy itself - when to replan, which modes to
+// ask, when to stop - is in replan_rules.hpp; the fallback chain in fallback_chain.hpp; the check
+// of an answer in answer_check.hpp. This class feeds them its state and carries out what they
+// decide. No LCM here: the node feeds events in and publishes what comes out.
 #pragma once
 
 #include <Eigen/Core>
@@ -10,8 +12,12 @@
 #include <string>
 #include <vector>
 
+#include "mmh/arbiter/answer_check.hpp"
 #include "mmh/arbiter/arbiter_params.hpp"
+#include "mmh/arbiter/fallback_chain.hpp"
 #include "mmh/arbiter/modes.hpp"
+#include "mmh/arbiter/phase.hpp"
+#include "mmh/arbiter/replan_rules.hpp"
 #include "mmh/common/trajectory.hpp"
 #include "mmh/common/voxel_grid.hpp"
 
@@ -52,7 +58,7 @@ struct DecisionOut {
   int64_t decision_seq = 0;
   int64_t utime = 0;
   Trigger trigger = Trigger::kNone;
-  Outcome outcome = Outcome::kPending;
+  Outcome outcome = Outcome::kFailed;
   bool awareness_safe = true;
   int8_t awareness_reason = 0;
   uint8_t modes_asked = 0;
@@ -102,79 +108,87 @@ class Arbiter {
   // --- state --------------------------------------------------------------------------------
   const ArbiterCounters& counters() const { return counters_; }
   const ArbiterParams& params() const { return params_; }
-  bool hasGoal() const { return goal_.has_value(); }
-  bool hasCommitted() const { return !committed_.empty(); }
-  const Trajectory& committed() const { return committed_; }
-  int64_t committedStartUtime() const { return committed_start_; }
-  Mode committedMode() const { return committed_mode_; }
-  bool pending() const { return pending_.has_value(); }
-  bool reached() const { return reached_; }
+  Phase phase() const { return phase_; }
+  bool hasGoal() const { return phase_ != Phase::kIdle; }
+  bool hasCommitted() const { return !committed_.trajectory.empty(); }
+  const Trajectory& committed() const { return committed_.trajectory; }
+  int64_t committedStartUtime() const { return committed_.start_utime; }
+  Mode committedMode() const { return committed_.mode; }
+  bool pending() const { return round_.has_value(); }  // a planning round is in flight
+  bool reached() const { return phase_ == Phase::kReached; }
   bool mapStale(int64_t now) const;
   // ODOMETRY received before, but older than stale_odometry_s at `now` (message clock).
   bool odometryStale(int64_t now) const;
 
  private:
-  struct Pending {
-    Trigger trigger = Trigger::kNone;
+  struct Goal {
+    int64_t id = 0;
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  };
+  struct Awareness {
+    bool safe = true;
+    int8_t reason = 0;
+    int64_t goal_id = -1;
+  };
+  struct Committed {
+    Trajectory trajectory;
     int64_t start_utime = 0;
+    Mode mode = Mode::kNone;
+    bool ends_at_goal = false;
+  };
+  // A planning round in flight: requests sent, answers collected until all came or the deadline.
+  struct Round {
+    Trigger trigger = Trigger::kNone;
+    RequestedStart start;
     int64_t deadline_utime = 0;
-    KinematicState start;
     Eigen::Vector3d target = Eigen::Vector3d::Zero();
     bool target_is_goal = false;
     std::vector<PlanRequestOut> requests;
     std::vector<ModeAnswer> answers;
   };
 
+  // The policy's inputs now (replan_rules.hpp).
+  ReplanView replanView(int64_t now) const;
+  StopView stopView(int64_t now) const;
+
   void evaluate(int64_t now);
-  Trigger nextTrigger(int64_t now) const;
-  std::vector<Mode> chooseModes(Trigger trigger) const;
-  void startPlanning(Trigger trigger, const std::vector<Mode>& modes, int64_t now);
+  void startRound(Trigger trigger, const std::vector<Mode>& modes, int64_t now);
   void decide(int64_t now, bool by_deadline);
-  bool verifyAnswer(const ModeAnswer& answer, std::string* why) const;
-  double score(const Trajectory& trajectory) const;
   void commit(const Trajectory& trajectory, int64_t start_utime, Mode mode, bool ends_at_goal);
+  // Commits a stopping trajectory; every caller has asked shouldStop() first.
   void commitStop(int64_t now, const std::string& why, Trigger trigger);
-  bool collisionAhead(int64_t now) const;
-  // A collision ahead that the halfway replan would not reach in time (see ArbiterParams).
-  bool collisionThreat(int64_t now, double* eta_s = nullptr) const;
-  KinematicState stateAt(int64_t utime) const;
-  void pushDecision(DecisionOut decision);
   void onStaleOdometry(int64_t now);
+  // Sets the phase after a round's decision or a stop, unless a new goal came meanwhile (its
+  // round comes next whatever the old round decided).
+  void enterPhase(Phase phase);
+  bool collisionAhead(int64_t now) const;
+  // A collision ahead that needs a round now (collisionNeedsRoundNow); *eta_s until it is hit.
+  bool collisionThreat(int64_t now, double* eta_s) const;
+  KinematicState stateAt(int64_t utime) const;
+  Eigen::Vector3d vehiclePosition() const;
+  void pushDecision(DecisionOut decision);
 
   ArbiterParams params_;
-  // Goal.
-  std::optional<Eigen::Vector3d> goal_;
-  int64_t goal_id_ = 0;
-  bool goal_changed_ = false;
-  bool reached_ = false;
+  Phase phase_ = Phase::kIdle;
+  Goal goal_;
   // Inputs.
-  bool have_odometry_ = false;
-  KinematicState odometry_;
+  int64_t now_ = 0;  // newest message-clock time seen
+  std::optional<KinematicState> odometry_;
   int64_t odometry_utime_ = 0;
-  bool stopped_for_stale_odometry_ = false;
-  int64_t now_ = 0;
+  std::optional<Awareness> awareness_;
   const VoxelGrid* grid_ = nullptr;
   int64_t map_seq_ = 0, map_utime_ = 0;
-  bool have_awareness_ = false;
-  bool awareness_safe_ = true;
-  int8_t awareness_reason_ = 0;
-  int64_t awareness_goal_id_ = -1;
-  // Committed trajectory.
-  Trajectory committed_;
-  int64_t committed_start_ = 0;
-  Mode committed_mode_ = Mode::kNone;
-  bool committed_ends_at_goal_ = false;
-  int64_t next_trajectory_id_ = 1;
-  Eigen::Vector3d last_plan_position_ = Eigen::Vector3d::Zero();
-  // Replanning state.
-  std::optional<Pending> pending_;
-  bool collision_detected_ = false;
-  double collision_eta_s_ = 0.0;  // time from detection until the vehicle would reach it
-  bool last_failed_ = false;
-  uint8_t tried_modes_ = 0;  // modes asked since the last commit
-  int64_t map_seq_at_failure_ = 0;
+  // Stops already committed for a stale input (one per stale period).
   bool stopped_for_stale_map_ = false;
-  int64_t last_round_utime_ = 0;  // when the last planning round started
+  bool stopped_for_stale_odometry_ = false;
+  // Committed trajectory and planning.
+  Committed committed_;
+  std::optional<Round> round_;
+  std::optional<double> collision_eta_s_;  // a threatening collision awaits its round
+  FallbackChain chain_;
+  int64_t last_round_utime_ = 0;
+  Eigen::Vector3d last_round_position_ = Eigen::Vector3d::Zero();
+  int64_t next_trajectory_id_ = 1;
   int64_t next_request_id_ = 1;
   int64_t next_decision_seq_ = 1;
   // Outputs.

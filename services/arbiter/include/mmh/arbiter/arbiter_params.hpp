@@ -8,7 +8,8 @@
 
 namespace mmh::arbiter {
 
-// How the arbiter chooses modes and when it replans (BENCHMARK.md baselines and ablations).
+// How the arbiter chooses modes and when it replans: the full method, its ablations, and the
+// single-mode baselines of the benchmark.
 enum class Policy {
   kMmh,             // awareness picks FPM/SOM, EAM on collision or SOM failure, lazy replanning
   kMmhNoLazy,       // as kMmh, but replans every fixed_replan_distance_m of progress
@@ -39,6 +40,9 @@ struct ArbiterParams {
   double answer_deadline_s = 0.04;  // answers later than this after the request are ignored
   double goal_tolerance_m = 0.3;
   double fixed_replan_distance_m = 1.5;  // baselines: replan after this much progress
+  // Lazy rule (1): replan once this share of the committed trajectory's duration has passed
+  // (the paper's halfway point).
+  double replan_fraction = 0.5;
   ParallelModes parallel_modes = ParallelModes::kNone;
   double inflation_m = 0.3;              // the planners' map inflation (local target clearance)
   double check_inflation_m = 0.25;       // inflation of the arbiter's own collision checks; a bit
@@ -62,7 +66,21 @@ struct ArbiterParams {
   double stale_odometry_s = 0.5;       // ODOMETRY older than this (message clock): no planning
   double start_escape_radius_m = 0.5;  // an answer starting in the check margin must leave it
                                        // within this distance of its start
-  double narrow_probe_dist_m = 0.8;    // for moving a local target out of obstacles
+  // EAM on a collision gets the rest of the committed trajectory as its reference only when more
+  // than this is left of it after the new start.
+  double reference_min_remaining_s = 0.2;
+  double stop_min_speed_mps = 0.05;  // slower than this, a stale input needs no stop
+  double braking_speed_mps = 0.1;    // a committed stop faster than this still brakes
+  // Answer check (answer_check.hpp).
+  double start_position_tolerance_m = 1e-3;  // an answer's start against the requested state
+  double start_velocity_tolerance_mps = 1e-2;
+  double start_acceleration_tolerance_mps2 = 5e-2;
+  double check_step_s = 0.05;          // time step of the geofence walk
+  double geofence_tolerance_m = 0.05;  // accepted excursion beyond the geofence
+  double escape_step_s = 0.01;         // time step of the walk out of the start's margin
+  // The planners keep mmh::kEscapeDepthTolerance on their own samples; this check samples in
+  // time (escape_step_s, up to 3 cm apart at v_max), so it allows a little more between them.
+  double escape_depth_tolerance_m = 0.03;
   Eigen::Vector3d geofence_min_m = Eigen::Vector3d(-1e3, -1e3, 0.0);
   Eigen::Vector3d geofence_max_m = Eigen::Vector3d(1e3, 1e3, 1e3);
 

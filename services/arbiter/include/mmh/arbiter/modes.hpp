@@ -15,13 +15,11 @@ enum class Trigger : int8_t {
   kHalfway = 2,    // committed trajectory executed past its halfway point
   kCollision = 3,  // newly mapped obstacle on the rest of the committed trajectory
   kGoalChanged = 4,
-  kRetry = 5,     // the last attempt failed
-  kFixed = 6,     // fixed-distance replanning (baselines)
-  kDeadline = 7,  // a decision forced by the answer deadline
+  kRetry = 5,  // the last attempt failed
+  kFixed = 6,  // fixed-distance replanning (baselines)
 };
 
 enum class Outcome : int8_t {
-  kPending = 0,
   kCommitted = 1,
   kFailed = 2,
   kStopping = 3,

@@ -1,0 +1,102 @@
+// The arbiter's policy as pure functions: when to replan (the lazy rules of paper Sec. III.D, or
+// fixed-distance replanning for the baselines), which modes to ask (Sec. III.A), which verified
+// answer to take, and when to stop instead. Each reads a snapshot of the arbiter's state
+// (ReplanView) and its parameters, and changes nothing, so each rule is tested on its own and
+// "when does it replan?" has one place to look.
+//
+// | trigger      | when                                                              | modes asked
+// (mmh)                  |
+// |--------------|-------------------------------------------------------------------|------------------------------------|
+// | initial      | a goal and no committed trajectory                                | FPM if S,
+// else SOM                 | | goal-changed | a new goal while a trajectory is committed | FPM if
+// S, else SOM                 | | collision    | a newly mapped obstacle on the rest of the
+// committed trajectory   | EAM within emergency_horizon_s,    | |              | (far ones are left
+// to the halfway replan)                         | else as initial                    | | retry |
+// the last round failed: the fallback chain's next mode             | SOM, then EAM, then wait for
+// a map | | halfway      | replan_fraction of the committed trajectory flown (lazy policies) | FPM
+// if S, else SOM                 | | fixed        | fixed_replan_distance_m flown (baselines) | the
+// policy's one mode              |
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "mmh/arbiter/arbiter_params.hpp"
+#include "mmh/arbiter/modes.hpp"
+#include "mmh/arbiter/phase.hpp"
+#include "mmh/common/trajectory.hpp"
+
+namespace mmh::arbiter {
+
+bool usesAwareness(Policy policy);  // S picks FPM or SOM (mmh, mmh-no-lazy)
+bool usesLazyRules(Policy policy);  // halfway replanning (mmh, mmh-no-awareness)
+
+// What the replanning rules read, taken from the arbiter at one moment.
+struct ReplanView {
+  Phase phase = Phase::kIdle;
+  bool has_committed = false;
+  bool committed_ends_at_goal = false;
+  double committed_elapsed_s = 0.0;  // now minus the committed trajectory's start
+  double committed_duration_s = 0.0;
+  // Set when a newly mapped obstacle threatens the committed trajectory: the time from its
+  // detection until the vehicle would reach it (the smallest, if seen again before a round).
+  std::optional<double> collision_eta_s;
+  bool awareness_safe = true;           // S of the newest AWARENESS for this goal
+  double flown_since_last_round_m = 0;  // vehicle travel since the last round started
+  double to_goal_m = 0;
+  std::optional<Mode> retry_mode;  // the fallback chain's next mode, if it has one now
+};
+
+// Which round (if any) the arbiter starts now.
+Trigger nextTrigger(const ReplanView& view, const ArbiterParams& params);
+
+// The modes asked for a round with this trigger; empty when there is nothing to ask.
+std::vector<Mode> modesFor(Trigger trigger, const ReplanView& view, const ArbiterParams& params);
+
+// Rule (2) of the lazy policy with its one exception: a collision at `hit_s` on the committed
+// trajectory (elapsed_s of it flown) needs a round now, unless the halfway replan comes first
+// and plans with this map before the vehicle gets there.
+bool collisionNeedsRoundNow(double hit_s, double elapsed_s, double duration_s, bool ends_at_goal,
+                            const ArbiterParams& params);
+
+// While a stopping trajectory still brakes, retries wait stop_retry_period_s between rounds:
+// plans from hard-braking states rarely fit the limits.
+bool retryThrottled(Trigger trigger, bool braking_in_stop, double since_last_round_s,
+                    const ArbiterParams& params);
+
+// EAM on a collision re-optimises the rest of the committed trajectory (its reference), ending
+// where it ends, when more than reference_min_remaining_s of it is left after the new start
+// (start_s into it) and its end is still clear with the planners' margin.
+bool collisionKeepsReference(Trigger trigger, bool end_clear, double start_s, double duration_s,
+                             const ArbiterParams& params);
+
+// The goal is reached within goal_tolerance_m, on no trajectory or one that ends there.
+bool goalReached(double to_goal_m, bool has_committed, bool committed_ends_at_goal,
+                 const ArbiterParams& params);
+
+// Estimated time to the goal of a verified answer (lower is better): the answer itself, then the
+// straight rest at full speed.
+double answerScore(const Trajectory& answer, const Eigen::Vector3d& goal,
+                   const ArbiterParams& params);
+
+// Every reason the arbiter commits a stopping trajectory, decided in one place.
+enum class StopCause {
+  kStaleMap,        // LOCAL_MAP went stale: planners would plan on an old map
+  kStaleOdometry,   // ODOMETRY went stale: the vehicle's state is unknown
+  kNoUsableAnswer,  // a round failed with an obstacle ahead on the committed trajectory
+};
+
+struct StopView {
+  bool has_committed = false;
+  bool committed_is_stop = false;
+  double odometry_speed_mps = 0.0;  // measured
+  double planned_speed_mps = 0.0;   // on the committed trajectory now
+  bool stopped_for_stale_map = false;
+  bool danger_ahead = false;        // the committed trajectory collides with the newest map
+  bool fallback_exhausted = false;  // every mode of the chain failed since the last commit
+  bool by_deadline = false;         // the failed round was closed by its answer deadline
+};
+
+bool shouldStop(StopCause cause, const StopView& view, const ArbiterParams& params);
+
+}  // namespace mmh::arbiter

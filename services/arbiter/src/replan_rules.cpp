@@ -1,0 +1,111 @@
+#include "mmh/arbiter/replan_rules.hpp"
+
+namespace mmh::arbiter {
+
+bool usesAwareness(Policy policy) {
+  return policy == Policy::kMmh || policy == Policy::kMmhNoLazy;
+}
+
+bool usesLazyRules(Policy policy) {
+  return policy == Policy::kMmh || policy == Policy::kMmhNoAwareness;
+}
+
+Trigger nextTrigger(const ReplanView& v, const ArbiterParams& params) {
+  if (v.phase == Phase::kNewGoal)
+    return v.has_committed ? Trigger::kGoalChanged : Trigger::kInitial;
+  // While recovering, the fallback chain goes on: a collision seen again on the next map must not
+  // restart it with EAM forever, never reaching SOM or the stop.
+  const bool recovering = v.phase == Phase::kRecovering;
+  const bool can_retry = recovering && v.retry_mode.has_value();
+  if (v.collision_eta_s && !can_retry) return Trigger::kCollision;
+  if (recovering) return can_retry ? Trigger::kRetry : Trigger::kNone;
+  if (!v.has_committed) return Trigger::kInitial;
+  if (usesLazyRules(params.policy)) {
+    // Rule (1): past the halfway point, unless this trajectory already ends at the goal.
+    if (!v.committed_ends_at_goal &&
+        v.committed_elapsed_s > params.replan_fraction * v.committed_duration_s) {
+      return Trigger::kHalfway;
+    }
+    return Trigger::kNone;
+  }
+  if (v.flown_since_last_round_m >= params.fixed_replan_distance_m &&
+      v.to_goal_m > params.fixed_replan_distance_m) {
+    return Trigger::kFixed;
+  }
+  if (!v.committed_ends_at_goal && v.committed_elapsed_s > v.committed_duration_s) {
+    return Trigger::kFixed;
+  }
+  return Trigger::kNone;
+}
+
+std::vector<Mode> modesFor(Trigger trigger, const ReplanView& v, const ArbiterParams& params) {
+  const Policy policy = params.policy;
+  if (trigger == Trigger::kRetry) {
+    if (v.retry_mode) return {*v.retry_mode};
+    return {};
+  }
+  if (policy == Policy::kEgo) return {Mode::kEam};
+  if (policy == Policy::kSom) return {Mode::kSom};
+  const bool emergency = v.collision_eta_s && *v.collision_eta_s <= params.emergency_horizon_s;
+  if (trigger == Trigger::kCollision && (emergency || !usesAwareness(policy))) {
+    if (params.parallel_modes != ParallelModes::kNone) return {Mode::kEam, Mode::kSom};
+    return {Mode::kEam};
+  }
+  const bool safe = usesAwareness(policy) && v.awareness_safe;
+  if (safe) return {Mode::kFpm};
+  if (params.parallel_modes == ParallelModes::kAlways) return {Mode::kSom, Mode::kEam};
+  return {Mode::kSom};
+}
+
+bool collisionNeedsRoundNow(double hit_s, double elapsed_s, double duration_s, bool ends_at_goal,
+                            const ArbiterParams& params) {
+  const double halfway_s = params.replan_fraction * duration_s;
+  const bool halfway_replan_pending =
+      usesLazyRules(params.policy) && !ends_at_goal && elapsed_s < halfway_s;
+  return !(params.defer_far_collisions && halfway_replan_pending &&
+           hit_s > halfway_s + params.collision_margin_s);
+}
+
+bool retryThrottled(Trigger trigger, bool braking_in_stop, double since_last_round_s,
+                    const ArbiterParams& params) {
+  // (A collision on the stop itself is not throttled: only an evasive plan can help then.)
+  return braking_in_stop && trigger == Trigger::kRetry &&
+         since_last_round_s < params.stop_retry_period_s;
+}
+
+bool collisionKeepsReference(Trigger trigger, bool end_clear, double start_s, double duration_s,
+                             const ArbiterParams& params) {
+  return trigger == Trigger::kCollision && end_clear &&
+         start_s < duration_s - params.reference_min_remaining_s;
+}
+
+bool goalReached(double to_goal_m, bool has_committed, bool committed_ends_at_goal,
+                 const ArbiterParams& params) {
+  return to_goal_m <= params.goal_tolerance_m && (!has_committed || committed_ends_at_goal);
+}
+
+double answerScore(const Trajectory& answer, const Eigen::Vector3d& goal,
+                   const ArbiterParams& params) {
+  return answer.duration() +
+         (goal - answer.position(answer.duration())).norm() / params.max_vel_mps;
+}
+
+bool shouldStop(StopCause cause, const StopView& v, const ArbiterParams& params) {
+  switch (cause) {
+    case StopCause::kStaleMap:
+      // Once per stale period, and only when the vehicle still moves.
+      return v.has_committed && !v.stopped_for_stale_map &&
+             v.odometry_speed_mps > params.stop_min_speed_mps;
+    case StopCause::kStaleOdometry:
+      // The stop continues the committed trajectory, not the stale odometry.
+      return v.has_committed && !v.committed_is_stop &&
+             v.planned_speed_mps > params.stop_min_speed_mps;
+    case StopCause::kNoUsableAnswer:
+      // Danger ahead and nothing left to try (or no time left): brake now rather than fly into
+      // it. A stop already under way brakes as hard as a new one would: recommitting only resets.
+      return v.danger_ahead && !v.committed_is_stop && (v.fallback_exhausted || v.by_deadline);
+  }
+  return false;
+}
+
+}  // namespace mmh::arbiter

@@ -1,0 +1,196 @@
+// The replanning policy as pure functions (replan_rules.hpp): each rule on its own, from a
+// hand-made view of the arbiter's state.
+#include <gtest/gtest.h>
+
+#include "mmh/arbiter/replan_rules.hpp"
+#include "mmh/common/minco.hpp"
+
+using namespace mmh::arbiter;
+
+namespace {
+
+ArbiterParams paramsFor(Policy policy) {
+  ArbiterParams p;
+  p.policy = policy;
+  return p;
+}
+
+// Tracking a 10 s trajectory that does not end at the goal, `elapsed_s` of it flown.
+ReplanView tracking(double elapsed_s) {
+  ReplanView v;
+  v.phase = Phase::kTracking;
+  v.has_committed = true;
+  v.committed_elapsed_s = elapsed_s;
+  v.committed_duration_s = 10.0;
+  v.to_goal_m = 20.0;
+  return v;
+}
+
+}  // namespace
+
+TEST(ReplanRules, ANewGoalIsPlannedFirstWhateverElseHappened) {
+  ReplanView v = tracking(9.0);
+  v.phase = Phase::kNewGoal;
+  v.collision_eta_s = 0.5;
+  EXPECT_EQ(nextTrigger(v, paramsFor(Policy::kMmh)), Trigger::kGoalChanged);
+  v.has_committed = false;
+  EXPECT_EQ(nextTrigger(v, paramsFor(Policy::kMmh)), Trigger::kInitial);
+}
+
+TEST(ReplanRules, HalfwayRuleFiresPastTheReplanFractionOnly) {
+  ArbiterParams p = paramsFor(Policy::kMmh);
+  EXPECT_EQ(nextTrigger(tracking(4.9), p), Trigger::kNone);
+  EXPECT_EQ(nextTrigger(tracking(5.1), p), Trigger::kHalfway);
+  p.replan_fraction = 0.7;
+  EXPECT_EQ(nextTrigger(tracking(5.1), p), Trigger::kNone);
+  EXPECT_EQ(nextTrigger(tracking(7.1), p), Trigger::kHalfway);
+  ReplanView at_goal = tracking(9.0);
+  at_goal.committed_ends_at_goal = true;
+  EXPECT_EQ(nextTrigger(at_goal, p), Trigger::kNone);
+}
+
+TEST(ReplanRules, BaselinesReplanAfterAFixedDistance) {
+  const ArbiterParams p = paramsFor(Policy::kEgo);
+  ReplanView v = tracking(1.0);
+  v.flown_since_last_round_m = 1.4;
+  EXPECT_EQ(nextTrigger(v, p), Trigger::kNone);
+  v.flown_since_last_round_m = 1.5;
+  EXPECT_EQ(nextTrigger(v, p), Trigger::kFixed);
+  v.to_goal_m = 1.0;  // the last stretch is flown on the plan that reaches the goal
+  EXPECT_EQ(nextTrigger(v, p), Trigger::kNone);
+  EXPECT_EQ(nextTrigger(tracking(10.5), p), Trigger::kFixed);  // ran out of trajectory
+}
+
+TEST(ReplanRules, RecoveringRetriesWithTheChainsModeEvenWhenACollisionIsSeenAgain) {
+  ReplanView v = tracking(1.0);
+  v.phase = Phase::kRecovering;
+  v.collision_eta_s = 1.0;
+  v.retry_mode = Mode::kEam;
+  const ArbiterParams p = paramsFor(Policy::kMmh);
+  EXPECT_EQ(nextTrigger(v, p), Trigger::kRetry);
+  EXPECT_EQ(modesFor(Trigger::kRetry, v, p), std::vector<Mode>{Mode::kEam});
+  v.retry_mode.reset();  // chain exhausted, no new map: only a new collision starts a round
+  EXPECT_EQ(nextTrigger(v, p), Trigger::kCollision);
+  v.collision_eta_s.reset();
+  EXPECT_EQ(nextTrigger(v, p), Trigger::kNone);
+  EXPECT_TRUE(modesFor(Trigger::kRetry, v, p).empty());
+}
+
+TEST(ReplanRules, AwarenessPicksFpmOrSom) {
+  const ArbiterParams p = paramsFor(Policy::kMmh);
+  ReplanView v = tracking(6.0);
+  v.awareness_safe = true;
+  EXPECT_EQ(modesFor(Trigger::kHalfway, v, p), std::vector<Mode>{Mode::kFpm});
+  v.awareness_safe = false;
+  EXPECT_EQ(modesFor(Trigger::kHalfway, v, p), std::vector<Mode>{Mode::kSom});
+  v.awareness_safe = true;  // without awareness, never FPM
+  EXPECT_EQ(modesFor(Trigger::kHalfway, v, paramsFor(Policy::kMmhNoAwareness)),
+            std::vector<Mode>{Mode::kSom});
+}
+
+TEST(ReplanRules, NearCollisionsAskEamFarOnesTheAwarenessMode) {
+  ArbiterParams p = paramsFor(Policy::kMmh);
+  ReplanView v = tracking(1.0);
+  v.awareness_safe = false;
+  v.collision_eta_s = p.emergency_horizon_s - 0.1;
+  EXPECT_EQ(modesFor(Trigger::kCollision, v, p), std::vector<Mode>{Mode::kEam});
+  v.collision_eta_s = p.emergency_horizon_s + 0.1;
+  EXPECT_EQ(modesFor(Trigger::kCollision, v, p), std::vector<Mode>{Mode::kSom});
+  p.parallel_modes = ParallelModes::kCollision;
+  v.collision_eta_s = 0.5;
+  EXPECT_EQ(modesFor(Trigger::kCollision, v, p), (std::vector<Mode>{Mode::kEam, Mode::kSom}));
+  p.parallel_modes = ParallelModes::kAlways;
+  EXPECT_EQ(modesFor(Trigger::kHalfway, v, p), (std::vector<Mode>{Mode::kSom, Mode::kEam}));
+}
+
+TEST(ReplanRules, SingleModeBaselinesAskTheirModeForEveryTrigger) {
+  const ReplanView v = tracking(1.0);
+  for (Trigger t : {Trigger::kInitial, Trigger::kCollision, Trigger::kFixed}) {
+    EXPECT_EQ(modesFor(t, v, paramsFor(Policy::kEgo)), std::vector<Mode>{Mode::kEam});
+    EXPECT_EQ(modesFor(t, v, paramsFor(Policy::kSom)), std::vector<Mode>{Mode::kSom});
+  }
+}
+
+TEST(ReplanRules, CollisionsBeyondTheHalfwayReplanWaitForIt) {
+  ArbiterParams p = paramsFor(Policy::kMmh);
+  // 10 s trajectory, 1 s flown: the halfway replan comes at 5 s.
+  EXPECT_TRUE(collisionNeedsRoundNow(5.0 + p.collision_margin_s - 0.1, 1.0, 10.0, false, p));
+  EXPECT_FALSE(collisionNeedsRoundNow(5.0 + p.collision_margin_s + 0.1, 1.0, 10.0, false, p));
+  EXPECT_TRUE(collisionNeedsRoundNow(9.0, 1.0, 10.0, true, p));   // no halfway replan comes
+  EXPECT_TRUE(collisionNeedsRoundNow(9.0, 5.5, 10.0, false, p));  // it came already
+  p.defer_far_collisions = false;
+  EXPECT_TRUE(collisionNeedsRoundNow(9.0, 1.0, 10.0, false, p));
+  EXPECT_TRUE(collisionNeedsRoundNow(9.0, 1.0, 10.0, false, paramsFor(Policy::kEgo)));
+}
+
+TEST(ReplanRules, RetriesWhileAStopBrakesWaitTheirPeriod) {
+  const ArbiterParams p = paramsFor(Policy::kMmh);
+  EXPECT_TRUE(retryThrottled(Trigger::kRetry, true, p.stop_retry_period_s / 2, p));
+  EXPECT_FALSE(retryThrottled(Trigger::kRetry, true, p.stop_retry_period_s * 2, p));
+  EXPECT_FALSE(retryThrottled(Trigger::kCollision, true, 0.0, p));
+  EXPECT_FALSE(retryThrottled(Trigger::kRetry, false, 0.0, p));
+}
+
+TEST(ReplanRules, EamKeepsTheReferenceOnlyWithEnoughOfItLeftAndAClearEnd) {
+  const ArbiterParams p = paramsFor(Policy::kMmh);
+  EXPECT_TRUE(collisionKeepsReference(Trigger::kCollision, true, 5.0, 10.0, p));
+  EXPECT_FALSE(collisionKeepsReference(Trigger::kCollision, false, 5.0, 10.0, p));
+  EXPECT_FALSE(collisionKeepsReference(Trigger::kCollision, true, 9.9, 10.0, p));
+  EXPECT_FALSE(collisionKeepsReference(Trigger::kHalfway, true, 5.0, 10.0, p));
+}
+
+TEST(ReplanRules, GoalIsReachedOnlyOnATrajectoryThatEndsThere) {
+  const ArbiterParams p = paramsFor(Policy::kMmh);
+  EXPECT_TRUE(goalReached(0.2, true, true, p));
+  EXPECT_TRUE(goalReached(0.2, false, false, p));
+  EXPECT_FALSE(goalReached(0.2, true, false, p));  // passing through on the way elsewhere
+  EXPECT_FALSE(goalReached(0.5, true, true, p));
+}
+
+TEST(ReplanRules, ScorePrefersTheEarlierArrival) {
+  const ArbiterParams p = paramsFor(Policy::kMmh);
+  auto line = [](double x_end, double duration) {
+    mmh::MincoJerk m;
+    Eigen::Matrix3d head = Eigen::Matrix3d::Zero(), tail = Eigen::Matrix3d::Zero();
+    head.col(0) = Eigen::Vector3d(0, 0, 1);
+    tail.col(0) = Eigen::Vector3d(x_end, 0, 1);
+    m.setConditions(head, tail, 1);
+    m.setParameters(Eigen::Matrix3Xd(3, 0), Eigen::VectorXd::Constant(1, duration));
+    return m.trajectory();
+  };
+  const Eigen::Vector3d goal(30, 0, 1);
+  // 10 m in 6 s + 20 m at 3 m/s = 12.67 s, against 5 m in 3 s + 25 m at 3 m/s = 11.33 s.
+  EXPECT_NEAR(answerScore(line(10, 6), goal, p), 6.0 + 20.0 / 3.0, 1e-9);
+  EXPECT_LT(answerScore(line(5, 3), goal, p), answerScore(line(10, 6), goal, p));
+}
+
+TEST(ReplanRules, EveryStopHasItsCondition) {
+  const ArbiterParams p = paramsFor(Policy::kMmh);
+  StopView moving;
+  moving.has_committed = true;
+  moving.odometry_speed_mps = 2.0;
+  moving.planned_speed_mps = 2.0;
+  EXPECT_TRUE(shouldStop(StopCause::kStaleMap, moving, p));
+  StopView once = moving;
+  once.stopped_for_stale_map = true;
+  EXPECT_FALSE(shouldStop(StopCause::kStaleMap, once, p));
+  StopView still = moving;
+  still.odometry_speed_mps = still.planned_speed_mps = 0.01;
+  EXPECT_FALSE(shouldStop(StopCause::kStaleMap, still, p));
+  EXPECT_FALSE(shouldStop(StopCause::kStaleOdometry, still, p));
+  EXPECT_TRUE(shouldStop(StopCause::kStaleOdometry, moving, p));
+
+  StopView failed = moving;
+  failed.danger_ahead = true;
+  EXPECT_FALSE(shouldStop(StopCause::kNoUsableAnswer, failed, p));  // modes left, time left
+  failed.fallback_exhausted = true;
+  EXPECT_TRUE(shouldStop(StopCause::kNoUsableAnswer, failed, p));
+  failed.fallback_exhausted = false;
+  failed.by_deadline = true;
+  EXPECT_TRUE(shouldStop(StopCause::kNoUsableAnswer, failed, p));
+  failed.committed_is_stop = true;  // already braking
+  EXPECT_FALSE(shouldStop(StopCause::kNoUsableAnswer, failed, p));
+  failed.committed_is_stop = false;
+  failed.danger_ahead = false;
+  EXPECT_FALSE(shouldStop(StopCause::kNoUsableAnswer, failed, p));
+}
