@@ -15,6 +15,7 @@
 #include "mmh/common/config.hpp"
 #include "mmh/sim/mission.hpp"
 #include "mmh/sim/simulator.hpp"
+#include "stop_census.hpp"
 
 namespace mmh {
 
@@ -56,6 +57,7 @@ struct FlightRecord {
   std::array<int, 5> iterations{};  // planning calls per mode index
   int commits = 0, stops = 0, failed_decisions = 0;
   std::vector<PathSample> path;  // 10 Hz
+  FlightCensus census;           // stops, their causes, stalls
   double sim_time_s = 0.0;
   double wall_time_s = 0.0;
   bool success() const { return metrics.reached && !metrics.collided; }
