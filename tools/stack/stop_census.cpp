@@ -25,6 +25,20 @@ std::string rejectionOf(const std::string& detail, const std::string& mode) {
   return detail.substr(from, end == std::string::npos ? std::string::npos : end - from);
 }
 
+// What a verification failure found, without its numbers and timings, so that failures of one
+// kind count together: "verification: max acceleration 2.4 m/s^2 exceeds 2 [A* ...]" gives
+// "max acceleration".
+std::string verificationKind(const std::string& text) {
+  std::string head = text;
+  const std::string prefix = "verification: ";
+  if (head.compare(0, prefix.size(), prefix) == 0) head = head.substr(prefix.size());
+  const size_t cut = head.find_first_of("0123456789([");
+  head = head.substr(0, cut);
+  while (!head.empty() && (head.back() == ' ' || head.back() == ',')) head.pop_back();
+  if (head.size() > 3 && head.compare(head.size() - 3, 3, " by") == 0) head.resize(head.size() - 3);
+  return head;
+}
+
 // A stop is its own decision right after the failed one that caused it (same step).
 constexpr double kSameDecisionStepS = 0.011;
 
@@ -92,6 +106,8 @@ std::vector<ModeFailure> StopCensusBuilder::failuresOf(const DecisionSample& dec
     f.mode = modeName(a.mode);
     if (!a.ok) {
       f.reason = planReasonName(a.reason);
+      const std::string kind = verificationKind(a.detail);
+      if (a.reason == plan_result_t::REASON_VERIFY && !kind.empty()) f.reason += ": " + kind;
       f.text = a.detail;
     } else {
       // A verified answer that was still not committed: the arbiter says why in its text.

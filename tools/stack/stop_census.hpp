@@ -26,9 +26,11 @@ struct DecisionSample {
 
 // A mode's part in a round of planning that ended without a commit.
 struct ModeFailure {
-  std::string mode;    // "FPM", "SOM", "EAM"
-  std::string reason;  // short, to count: "no path", "optimizer", "rejected: ...", "no answer"
-  std::string text;    // the planner's detail text (PLAN_RESULT), if any
+  std::string mode;  // "FPM", "SOM", "EAM"
+  // Short, to count: "no path", "optimizer", "verify: max acceleration", "rejected: ...",
+  // "no answer".
+  std::string reason;
+  std::string text;  // the planner's detail text (PLAN_RESULT), if any
 };
 
 struct StopRecord {

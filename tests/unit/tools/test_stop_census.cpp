@@ -76,6 +76,24 @@ TEST(StopCensus, StopAfterAFailedRoundNamesItsModesAndCause) {
   EXPECT_EQ(c.causeCounts().at("no usable answer + danger ahead"), 1);
 }
 
+TEST(StopCensus, VerificationFailuresCountByWhatTheyFound) {
+  StopCensusBuilder b;
+  b.onPlanResult(kSom, false, plan_result_t::REASON_VERIFY,
+                 "verification: max acceleration 2.419 m/s^2 exceeds 2 [A* 0.33 ms]");
+  b.onPlanResult(kEam, false, plan_result_t::REASON_VERIFY,
+                 "verification: leaves the corridor by 0.02 m in piece 0 [A* 4.27 ms]");
+  const std::string notes = "SOM failed (verification: ...); EAM failed (verification: ...); ";
+  b.onDecision(
+      decision(2.0, arbiter_status_t::OUTCOME_FAILED, 5, (1 << kSom) | (1 << kEam), notes));
+  b.onDecision(decision(2.0, arbiter_status_t::OUTCOME_STOPPING, 5, 0,
+                        "no usable answer and danger ahead: " + notes));
+  const FlightCensus c = b.finish(3.0);
+  ASSERT_EQ(c.stops.size(), 1u);
+  ASSERT_EQ(c.stops[0].failed_modes.size(), 2u);
+  EXPECT_EQ(c.stops[0].failed_modes[0].reason, "verify: max acceleration");
+  EXPECT_EQ(c.stops[0].failed_modes[1].reason, "verify: leaves the corridor");
+}
+
 TEST(StopCensus, UnansweredModesAndStaleMapStops) {
   StopCensusBuilder b;
   b.onPlanResult(kSom, false, plan_result_t::REASON_NO_MAP, "no map");
