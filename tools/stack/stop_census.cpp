@@ -124,7 +124,6 @@ std::vector<ModeFailure> StopCensusBuilder::failuresOf(const DecisionSample& dec
 }
 
 void StopCensusBuilder::onDecision(const DecisionSample& d) {
-  if (d.outcome == arbiter_status_t::OUTCOME_PENDING) return;
   const bool follows_failure =
       last_decision_failed_ && d.time_s - last_decision_time_s_ < kSameDecisionStepS;
   if (d.outcome == arbiter_status_t::OUTCOME_COMMITTED) {

@@ -97,9 +97,9 @@ TEST(StopCensus, VerificationFailuresCountByWhatTheyFound) {
 TEST(StopCensus, UnansweredModesAndStaleMapStops) {
   StopCensusBuilder b;
   b.onPlanResult(kSom, false, plan_result_t::REASON_NO_MAP, "no map");
-  b.onDecision(decision(1.0, arbiter_status_t::OUTCOME_FAILED, 7, (1 << kSom) | (1 << kEam),
+  b.onDecision(decision(1.0, arbiter_status_t::OUTCOME_FAILED, 5, (1 << kSom) | (1 << kEam),
                         "SOM failed (no map); no answer by the deadline; "));
-  b.onDecision(decision(1.0, arbiter_status_t::OUTCOME_STOPPING, 7, 0,
+  b.onDecision(decision(1.0, arbiter_status_t::OUTCOME_STOPPING, 5, 0,
                         "no usable answer and danger ahead: SOM failed (no map); no answer by "
                         "the deadline; "));
   // Seconds later, a stop of its own: no failed round belongs to it.
@@ -108,7 +108,7 @@ TEST(StopCensus, UnansweredModesAndStaleMapStops) {
   const FlightCensus c = b.finish(6.0);
   ASSERT_EQ(c.stops.size(), 2u);
   EXPECT_EQ(c.stops[0].cause, "deadline");
-  EXPECT_EQ(c.stops[0].trigger, "deadline");
+  EXPECT_EQ(c.stops[0].trigger, "retry");
   ASSERT_EQ(c.stops[0].failed_modes.size(), 2u);
   EXPECT_EQ(c.stops[0].failed_modes[1].mode, "EAM");
   EXPECT_EQ(c.stops[0].failed_modes[1].reason, "no answer");
