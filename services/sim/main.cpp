@@ -17,8 +17,11 @@ int main(int argc, char** argv) {
                         "Simulated UAV: random forest or PCD world, vehicle that follows the "
                         "committed TRAJECTORY, depth camera or LiDAR, mission ground truth.");
   mmh::addNodeOptions(parser, &node);
-  parser.addString("--world", &o.world, "forest, or the path of a .pcd file (surface points)");
-  parser.addVector3("--size", &o.size_m, "forest box x,y,z in m (centred on x = y = 0)");
+  parser.addString(
+      "--world", &o.world,
+      "forest, ego-forest (EGO-Planner's pillars and rings), or the path of a .pcd file");
+  parser.addVector3("--size", &o.size_m,
+                    "forest / ego-forest box x,y,z in m (centred on x = y = 0)");
   parser.addDouble("--density", &o.density_per_m2, "forest obstacles per square metre");
   parser.addInt("--seed", &seed, "forest seed");
   parser.addVector3("--start", &o.start, "start position x,y,z (m)");

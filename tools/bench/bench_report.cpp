@@ -21,7 +21,75 @@ std::string densityLabel(double d) {
   return d < 0 ? "own world" : fmt(d, 2);
 }
 
+// "a ×3, b ×1": the counts, most frequent first (ties by name), at most `limit` of them.
+std::string topCounts(const std::map<std::string, int>& counts, size_t limit) {
+  std::vector<std::pair<std::string, int>> sorted(counts.begin(), counts.end());
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](const auto& a, const auto& b) { return a.second > b.second; });
+  std::string out;
+  for (size_t i = 0; i < sorted.size() && i < limit; ++i) {
+    if (i) out += ", ";
+    out += sorted[i].first + " ×" + std::to_string(sorted[i].second);
+  }
+  return out.empty() ? "–" : out;
+}
+
+struct Groups {
+  std::set<double> densities;
+  std::vector<std::string> methods;
+};
+
+Groups groupsOf(const std::vector<FlightResult>& results) {
+  Groups g;
+  for (const FlightResult& r : results) {
+    g.densities.insert(r.spec.density);
+    if (std::find(g.methods.begin(), g.methods.end(), r.spec.method) == g.methods.end())
+      g.methods.push_back(r.spec.method);
+  }
+  return g;
+}
+
 }  // namespace
+
+std::string stopCensusMarkdown(const std::vector<FlightResult>& results) {
+  const Groups g = groupsOf(results);
+  std::ostringstream md;
+  md << "## Stops and stalls\n\n"
+        "All flights. A stop is an arbiter decision with outcome stopping; its cause comes from "
+        "the decision's text, the failed modes from the failed decision just before it. Calls "
+        "without commit: planning calls in a row whose rounds all ended without a commit. No "
+        "progress: the distance to the goal did not shrink by "
+     << fmt(kProgressStepM, 1)
+     << " m. Per-stop detail in results.json (`stop_events`).\n\n"
+        "| density | method | flights | stops | stops / flight | causes | failed modes at the "
+        "stops | max calls w/o commit | longest no progress (s) | mean longest no progress (s) "
+        "|\n|---|---|---|---|---|---|---|---|---|---|\n";
+  for (double d : g.densities) {
+    for (const std::string& m : g.methods) {
+      std::map<std::string, int> causes, failed_modes;
+      int flights = 0, stops = 0, max_calls = 0;
+      std::vector<double> no_progress;
+      for (const FlightResult& r : results) {
+        if (r.spec.density != d || r.spec.method != m || !r.error.empty()) continue;
+        ++flights;
+        for (const StopRecord& s : r.census.stops) {
+          ++stops;
+          ++causes[s.cause];
+          for (const ModeFailure& f : s.failed_modes) ++failed_modes[f.mode + " " + f.reason];
+        }
+        max_calls = std::max(max_calls, r.census.max_calls_without_commit);
+        no_progress.push_back(r.census.longest_no_progress_s);
+      }
+      if (flights == 0) continue;
+      const Stat np = statOf(no_progress);
+      md << "| " << densityLabel(d) << " | " << m << " | " << flights << " | " << stops << " | "
+         << fmt(double(stops) / flights) << " | " << topCounts(causes, 4) << " | "
+         << topCounts(failed_modes, 4) << " | " << max_calls << " | " << fmt(np.max, 1) << " | "
+         << fmt(np.avg, 1) << " |\n";
+    }
+  }
+  return md.str();
+}
 
 Stat statOf(const std::vector<double>& values) {
   Stat s;
@@ -163,6 +231,7 @@ std::string summaryMarkdown(const std::vector<FlightResult>& results, const std:
     }
   }
   md << "\nPaper figures from BENCHMARK.md (paper's machine: i9-13980HX; ours: 2 shared cores).\n";
+  md << "\n" << stopCensusMarkdown(results);
   return md.str();
 }
 

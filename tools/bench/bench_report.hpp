@@ -23,6 +23,11 @@ struct PaperFigures {
 };
 PaperFigures paperFigures(double density);
 
+// The census of stops and stalls per density and method (all flights, failed ones included):
+// stops, their most frequent causes and failed modes, the longest run of planning calls without
+// a commit and the longest time without progress toward the goal. Part of summaryMarkdown.
+std::string stopCensusMarkdown(const std::vector<FlightResult>& results);
+
 std::string summaryMarkdown(const std::vector<FlightResult>& results, const std::string& command,
                             double wall_time_s);
 

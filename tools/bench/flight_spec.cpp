@@ -15,6 +15,34 @@ double number(const nlohmann::json& j) {
   return j.is_null() ? NAN : j.get<double>();
 }
 
+nlohmann::json toJson(const ModeFailure& f) {
+  return nlohmann::json{{"mode", f.mode}, {"reason", f.reason}, {"text", f.text}};
+}
+
+nlohmann::json toJson(const StopRecord& s) {
+  nlohmann::json failed = nlohmann::json::array();
+  for (const ModeFailure& f : s.failed_modes) failed.push_back(toJson(f));
+  return nlohmann::json{
+      {"time_s", s.time_s},     {"trigger", s.trigger},
+      {"cause", s.cause},       {"detail", s.detail},
+      {"failed_modes", failed}, {"failed_decisions_before", s.failed_decisions_before}};
+}
+
+StopRecord stopFromJson(const nlohmann::json& j) {
+  StopRecord s;
+  s.time_s = j.at("time_s").get<double>();
+  s.trigger = j.at("trigger").get<std::string>();
+  s.cause = j.at("cause").get<std::string>();
+  s.detail = j.at("detail").get<std::string>();
+  for (const auto& f : j.at("failed_modes")) {
+    s.failed_modes.push_back(ModeFailure{f.at("mode").get<std::string>(),
+                                         f.at("reason").get<std::string>(),
+                                         f.at("text").get<std::string>()});
+  }
+  s.failed_decisions_before = j.at("failed_decisions_before").get<int>();
+  return s;
+}
+
 }  // namespace
 
 std::string FlightSpec::id() const {
@@ -26,6 +54,8 @@ std::string FlightSpec::id() const {
 
 nlohmann::json toJson(const FlightResult& r) {
   const FlightSpec& f = r.spec;
+  nlohmann::json stop_events = nlohmann::json::array();
+  for (const StopRecord& s : r.census.stops) stop_events.push_back(toJson(s));
   return nlohmann::json{
       {"method", f.method},
       {"density", f.density},
@@ -55,6 +85,13 @@ nlohmann::json toJson(const FlightResult& r) {
       {"stops", r.stops},
       {"wall_time_s", number(r.wall_time_s)},
       {"error", r.error},
+      {"sensor", f.sensor},
+      {"size", {f.size_m.x(), f.size_m.y(), f.size_m.z()}},
+      {"stop_causes", r.census.causeCounts()},
+      {"stop_events", stop_events},
+      {"max_calls_without_commit", r.census.max_calls_without_commit},
+      {"longest_no_progress_s", number(r.census.longest_no_progress_s)},
+      {"longest_no_progress_from_s", number(r.census.longest_no_progress_from_s)},
   };
 }
 
@@ -92,6 +129,12 @@ FlightResult fromJson(const nlohmann::json& j) {
   r.stops = j.at("stops").get<int>();
   r.wall_time_s = number(j.at("wall_time_s"));
   r.error = j.at("error").get<std::string>();
+  f.sensor = j.at("sensor").get<std::string>();
+  for (int i = 0; i < 3; ++i) f.size_m[i] = j.at("size").at(i).get<double>();
+  for (const auto& s : j.at("stop_events")) r.census.stops.push_back(stopFromJson(s));
+  r.census.max_calls_without_commit = j.at("max_calls_without_commit").get<int>();
+  r.census.longest_no_progress_s = number(j.at("longest_no_progress_s"));
+  r.census.longest_no_progress_from_s = number(j.at("longest_no_progress_from_s"));
   return r;
 }
 

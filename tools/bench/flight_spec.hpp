@@ -6,16 +6,20 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "stop_census.hpp"
+
 namespace mmh::bench {
 
 struct FlightSpec {
   std::string method = "mmh";    // arbiter policy
   double density = 0.1;          // obstacles per m^2 (forest worlds)
-  std::string world = "forest";  // "forest" or a .pcd path
-  int map_index = 0;             // 0..maps-1
-  int64_t map_seed = 0;          // forest seed
-  int trial = 0;                 // 0..trials-1
-  int64_t noise_seed = 0;        // sensor-noise seed of this trial
+  std::string world = "forest";  // "forest", "ego-forest" or a .pcd path
+  Eigen::Vector3d size_m = Eigen::Vector3d(50.0, 50.0, 3.0);  // forest box, centred on x = y = 0
+  std::string sensor = "depth";                               // "depth" or "lidar"
+  int map_index = 0;                                          // 0..maps-1
+  int64_t map_seed = 0;                                       // forest seed
+  int trial = 0;                                              // 0..trials-1
+  int64_t noise_seed = 0;                                     // sensor-noise seed of this trial
   Eigen::Vector3d start = Eigen::Vector3d(-19.95, 0.0, 1.2);
   Eigen::Vector3d goal = Eigen::Vector3d(19.95, 0.0, 1.2);
   std::string id() const;  // unique, file-name safe
@@ -31,6 +35,7 @@ struct FlightResult {
   double time_bound_s = 0, time_ratio = 0;
   double min_clearance_m = 0;
   int stops = 0;
+  FlightCensus census;  // the stops with their causes, and the stalls
   double wall_time_s = 0;
   std::string error;  // non-empty when the flight could not run
 };

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "bench_report.hpp"
+#include "config_overrides.hpp"
 #include "mmh/common/cli.hpp"
 #include "mmh/common/log.hpp"
 #include "mmh/common/node_options.hpp"
@@ -74,13 +75,17 @@ FlightResult readResult(const std::string& path, const FlightSpec& spec) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  std::string command;
+  for (int i = 0; i < argc; ++i) command += (i ? " " : "") + std::string(argv[i]);
+  const std::vector<std::string> overrides = mmh::takeSetOptions(&argc, argv);
+  std::string set_help, sensor = "depth";
   std::string methods_text = "mmh,ego,som", densities_text = "0,0.05,0.1,0.2", out_dir;
   std::string config_path, world = "forest", worker_spec, worker_out, paths_dir;
   int maps = 3, trials = 5, jobs = 1, seed = 1;
   double timeout_s = 120.0;
   bool no_plots = false;
   FlightSpec defaults;
-  Eigen::Vector3d start = defaults.start, goal = defaults.goal;
+  Eigen::Vector3d start = defaults.start, goal = defaults.goal, size = defaults.size_m;
   mmh::ArgParser parser("mmh-bench",
                         "Runs the mission benchmark of BENCHMARK.md in lock-step: every method on "
                         "the same worlds, start, goal and sensor; writes results.json, summary.md "
@@ -95,7 +100,14 @@ int main(int argc, char** argv) {
   parser.addInt("--seed", &seed, "base of the map seeds");
   parser.addString("--out", &out_dir, "output directory (required)");
   parser.addString("--config", &config_path, "configuration (default: deploy/config/default.yaml)");
-  parser.addString("--world", &world, "forest, or a PCD file of your own world");
+  parser.addString("--world", &world,
+                   "forest, ego-forest (EGO-Planner's pillars and rings), or a PCD file of your "
+                   "own world");
+  parser.addVector3("--size", &size, "forest / ego-forest box x,y,z (m), centred on x = y = 0");
+  parser.addString("--sensor", &sensor, "depth or lidar");
+  parser.addString("--set", &set_help,
+                   "key=value: override one configuration key for every flight (repeatable; the "
+                   "key must exist)");
   parser.addVector3("--start", &start, "start x,y,z");
   parser.addVector3("--goal", &goal, "goal x,y,z");
   parser.addDouble("--timeout", &timeout_s, "simulated seconds before a flight counts as failed");
@@ -111,7 +123,7 @@ int main(int argc, char** argv) {
   node.config_path = config_path;
   mmh::Config config;
   try {
-    config = mmh::loadNodeConfig(node);
+    config = mmh::loadConfigWithOverrides(node, overrides);
     mmh::setLogLevel(mmh::LogLevel::kError);
   } catch (const std::exception& e) {
     std::cerr << "mmh-bench: " << e.what() << "\n";
@@ -132,10 +144,15 @@ int main(int argc, char** argv) {
     std::cerr << "mmh-bench: --maps, --trials and --jobs must be >= 1\n";
     return 2;
   }
+  if (sensor != "depth" && sensor != "lidar") {
+    std::cerr << "mmh-bench: unknown sensor '" << sensor << "' (use depth or lidar)\n";
+    return 2;
+  }
   const std::vector<std::string> methods = splitList(methods_text);
   std::vector<double> densities;
   for (const std::string& d : splitList(densities_text)) densities.push_back(std::stod(d));
-  if (world != "forest") {
+  const bool generated_world = world == "forest" || world == "ego-forest";
+  if (!generated_world) {
     densities = {-1.0};
     maps = 1;
     if (!fs::exists(world)) {
@@ -155,6 +172,8 @@ int main(int argc, char** argv) {
           f.method = method;
           f.density = densities[di];
           f.world = world;
+          f.size_m = size;
+          f.sensor = sensor;
           f.map_index = m;
           f.map_seed = seed * 1000 + static_cast<int64_t>(di) * 100 + m;
           f.trial = t;
@@ -197,6 +216,10 @@ int main(int argc, char** argv) {
           args.push_back("--config");
           args.push_back(config_path.c_str());
         }
+        for (const std::string& assignment : overrides) {
+          args.push_back("--set");
+          args.push_back(assignment.c_str());
+        }
         args.push_back(nullptr);
         execv(self.c_str(), const_cast<char* const*>(args.data()));
         _exit(127);
@@ -229,12 +252,11 @@ int main(int argc, char** argv) {
   nlohmann::json all = nlohmann::json::array();
   for (const FlightResult& r : results) all.push_back(mmh::bench::toJson(r));
   std::ofstream(fs::path(out_dir) / "results.json") << all.dump(1) << "\n";
-  std::string command;
-  for (int i = 0; i < argc; ++i) command += (i ? " " : "") + std::string(argv[i]);
   std::ofstream(fs::path(out_dir) / "summary.md")
       << mmh::bench::summaryMarkdown(results, command, elapsed());
   std::cout << "wrote " << (fs::path(out_dir) / "results.json").string() << " and summary.md ("
-            << flights.size() << " flights, " << formatDuration(elapsed()) << ")\n";
+            << flights.size() << " flights, " << formatDuration(elapsed()) << ")\n\n"
+            << mmh::bench::stopCensusMarkdown(results);
   for (const FlightResult& r : results) {
     if (!r.error.empty()) std::cerr << r.spec.id() << ": " << r.error << "\n";
   }

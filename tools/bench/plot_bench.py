@@ -47,17 +47,23 @@ def top_views(out_dir, results):
     for d in densities:
         fig, ax = plt.subplots(figsize=(12, 4.2))
         cylinders = None
+        rings = None
         for m in methods:
             p = paths.get((m, d, 0, 0))
             if not p:
                 continue
             cylinders = cylinders or p["cylinders"]
+            rings = rings or p.get("rings")  # ego-forest: [x, y, horizontal semi-axis, yaw]
             xs = [s[1] for s in p["path"]]
             ys = [s[2] for s in p["path"]]
             label = m + ("" if p["success"] else " (failed)")
             ax.plot(xs, ys, color=COLORS.get(m, None), lw=1.6, label=label)
         for c in cylinders or []:
             ax.add_patch(Circle((c[0], c[1]), c[2], color="0.35", alpha=0.8, lw=0))
+        for x, y, a, yaw in rings or []:
+            # A vertical ring seen from above: a segment across its plane's horizontal axis.
+            dx, dy = -a * math.sin(yaw), a * math.cos(yaw)
+            ax.plot([x - dx, x + dx], [y - dy, y + dy], color="tab:brown", lw=2)
         r0 = next((r for r in results if r["density"] == d), None)
         if r0:
             ax.plot(*r0["start"][:2], "ko", ms=6)

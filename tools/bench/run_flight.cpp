@@ -4,6 +4,7 @@
 #include <numeric>
 
 #include "mmh/common/forest.hpp"
+#include "mmh/sim/ego_forest.hpp"
 #include "stack.hpp"
 
 namespace mmh::bench {
@@ -28,6 +29,8 @@ FlightResult runFlight(const FlightSpec& spec, const Config& config, double time
   options.policy = spec.method;
   options.timeout_s = timeout_s;
   options.sim.world = spec.world;
+  options.sim.size_m = spec.size_m;
+  options.sim.sensor = spec.sensor;
   options.sim.density_per_m2 = spec.density < 0 ? 0.0 : spec.density;
   options.sim.seed = spec.map_seed;
   options.sim.noise_seed = spec.noise_seed;
@@ -60,6 +63,7 @@ FlightResult runFlight(const FlightSpec& spec, const Config& config, double time
     result.time_ratio = m.time_bound_s > 0 ? m.flight_time_s / m.time_bound_s : NAN;
     result.min_clearance_m = m.min_clearance_m;
     result.stops = rec.stops;
+    result.census = rec.census;
     result.wall_time_s = rec.wall_time_s;
     if (!paths_dir.empty()) {
       nlohmann::json j;
@@ -82,6 +86,21 @@ FlightResult runFlight(const FlightSpec& spec, const Config& config, double time
         fs.goal = spec.goal;
         for (const Cylinder& c : generateForest(fs))
           obstacles.push_back({c.center.x(), c.center.y(), c.radius});
+      }
+      if (spec.world == "ego-forest") {
+        // Pillars as their circles; rings as their centre, horizontal semi-axis and yaw.
+        sim::EgoForestSpec es;
+        es.size_m = options.sim.size_m;
+        es.density_per_m2 = options.sim.density_per_m2;
+        es.seed = static_cast<uint64_t>(options.sim.seed);
+        es.start = spec.start;
+        es.goal = spec.goal;
+        const sim::EgoForest forest = sim::generateEgoForest(es);
+        for (const sim::EgoPillar& p : forest.pillars)
+          obstacles.push_back({p.center.x(), p.center.y(), 0.5 * p.diameter_m});
+        auto& rings = j["rings"] = nlohmann::json::array();
+        for (const sim::EllipticRing& r : forest.rings)
+          rings.push_back({r.center.x(), r.center.y(), r.semi_horizontal_m, r.yaw});
       }
       std::ofstream(paths_dir + "/" + spec.id() + ".path.json") << j.dump() << "\n";
     }

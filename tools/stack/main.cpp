@@ -2,6 +2,7 @@
 // simulator in lock-step (faster than real time; the same seed gives the same flight).
 #include <iostream>
 
+#include "config_overrides.hpp"
 #include "fleet_report.hpp"
 
 #include "mmh/common/cli.hpp"
@@ -9,7 +10,23 @@
 #include "mmh/common/node_options.hpp"
 #include "stack.hpp"
 
+namespace {
+
+// {"cause": count, ...} in the census's (alphabetical) order.
+std::string causeCountsJson(const mmh::FlightCensus& census) {
+  std::string out = "{";
+  for (const auto& [cause, count] : census.causeCounts()) {
+    if (out.size() > 1) out += ", ";
+    out += "\"" + cause + "\": " + std::to_string(count);
+  }
+  return out + "}";
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  const std::vector<std::string> overrides = mmh::takeSetOptions(&argc, argv);
+  std::string set_help;
   mmh::NodeOptions node;
   mmh::sim::SimOptions sim;
   std::string policy, log_path;
@@ -39,6 +56,8 @@ int main(int argc, char** argv) {
   parser.addDouble("--map-loss", &map_loss,
                    "test switch: share of LOCAL_MAP messages planners lose");
   parser.addFlag("--json", &json, "print the result as one JSON object");
+  parser.addString("--set", &set_help,
+                   "key=value: override one configuration key (repeatable; the key must exist)");
   parser.addInt("--vehicles", &vehicles,
                 "vehicles in the one simulation (prefixes <prefix>UAV1_ ..., seeds +0, +1, ...)");
   int code = 0;
@@ -48,7 +67,7 @@ int main(int argc, char** argv) {
   mmh::setLogServiceName("mmh-stack");
   try {
     mmh::StackOptions options;
-    options.config = mmh::loadNodeConfig(node);
+    options.config = mmh::loadConfigWithOverrides(node, overrides);
     options.sim = sim;
     options.prefix = node.prefix;
     options.policy = policy;
@@ -70,8 +89,12 @@ int main(int argc, char** argv) {
                 << ", \"som\": " << r.iterations[2] << ", \"eam\": " << r.iterations[3]
                 << ", \"cost_ms_mean\": " << (iterations ? cost_sum / iterations : 0.0)
                 << ", \"time_bound_s\": " << m.time_bound_s << ", \"stops\": " << r.stops
-                << ", \"wall_time_s\": " << r.wall_time_s << ", \"trajectory_digest\": \""
-                << std::hex << r.trajectory_digest << std::dec << "\"}\n";
+                << ", \"wall_time_s\": " << r.wall_time_s
+                << ", \"stop_causes\": " << causeCountsJson(r.census)
+                << ", \"max_calls_without_commit\": " << r.census.max_calls_without_commit
+                << ", \"longest_no_progress_s\": " << r.census.longest_no_progress_s
+                << ", \"trajectory_digest\": \"" << std::hex << r.trajectory_digest << std::dec
+                << "\"}\n";
     } else {
       std::cout << "result:        " << r.end_reason << "\n"
                 << "flight time:   " << m.flight_time_s << " s (bound " << m.time_bound_s << " s)\n"

@@ -50,6 +50,7 @@ struct Vehicle {
   std::unique_ptr<SimNode> sim;
   ServiceContext* observer = nullptr;
   FlightRecord record;
+  StopCensusBuilder census;
   int current_mode = 0;
   int64_t t0 = 0, next_sample = 0;
   bool done = false;
@@ -92,6 +93,7 @@ struct Vehicle {
       p.speed = v.state().velocity.norm();
       p.mode = current_mode;
       record.path.push_back(p);
+      census.onProgress(sinceStart(now), (p.position - options.sim.goal).norm());
     }
   }
 
@@ -101,8 +103,12 @@ struct Vehicle {
     record.end_reason =
         record.metrics.collided ? "collided" : (record.metrics.reached ? "reached" : "timeout");
     record.wall_time_s = wall_time_s;
+    record.census = census.finish(sinceStart(sim->nowUtime()));
     done = true;
   }
+
+  // Simulated seconds since the start of the flight (the census and the plan calls share it).
+  double sinceStart(int64_t utime) const { return (utime - options.sim.start_utime) * 1e-6; }
 
   // Observer handlers: what the benchmark needs to know about planning.
   void onPlanResult(const plan_result_t& msg) {
@@ -111,8 +117,9 @@ struct Vehicle {
     c.ok = msg.status == plan_result_t::STATUS_OK;
     c.reason = msg.reason;
     c.compute_ms = msg.compute_us * 1e-3;
-    c.sim_time_s = (sim->nowUtime() - options.sim.start_utime) * 1e-6;
+    c.sim_time_s = sinceStart(sim->nowUtime());
     record.calls.push_back(c);
+    census.onPlanResult(msg.mode, c.ok, msg.reason, msg.detail);
     if (msg.mode >= 1 && msg.mode <= 4) ++record.iterations[msg.mode];
   }
   void onTrajectory(const trajectory_t& msg) {
@@ -126,6 +133,13 @@ struct Vehicle {
   }
   void onStatus(const arbiter_status_t& msg) {
     if (msg.outcome == arbiter_status_t::OUTCOME_FAILED) ++record.failed_decisions;
+    DecisionSample d;
+    d.time_s = sinceStart(sim->nowUtime());
+    d.trigger = msg.trigger;
+    d.outcome = msg.outcome;
+    d.modes_asked = msg.modes_asked;
+    d.detail = msg.detail;
+    census.onDecision(d);
   }
 };
 

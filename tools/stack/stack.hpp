@@ -15,6 +15,7 @@
 #include "mmh/common/config.hpp"
 #include "mmh/sim/mission.hpp"
 #include "mmh/sim/simulator.hpp"
+#include "stop_census.hpp"
 
 namespace mmh {
 
@@ -59,6 +60,7 @@ struct FlightRecord {
   // trajectories at the same times, so two builds can be shown to fly identically.
   uint64_t trajectory_digest = 14695981039346656037ull;
   std::vector<PathSample> path;  // 10 Hz
+  FlightCensus census;           // stops, their causes, stalls
   double sim_time_s = 0.0;
   double wall_time_s = 0.0;
   bool success() const { return metrics.reached && !metrics.collided; }

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "mmh/common/forest.hpp"
+#include "mmh/sim/ego_forest_world.hpp"
 #include "mmh/sim/forest_world.hpp"
 #include "mmh/sim/pointcloud_world.hpp"
 
@@ -43,6 +44,23 @@ std::unique_ptr<World> makeWorld(const SimOptions& options, const SimParams& par
       throw std::runtime_error(e.what());
     }
   }
+  if (options.world == "ego-forest") {
+    EgoForestSpec spec;
+    spec.size_m = options.size_m;
+    spec.density_per_m2 = options.density_per_m2;
+    spec.seed = static_cast<uint64_t>(options.seed);
+    spec.start = options.start;
+    spec.goal = options.goal;
+    EgoForestBoundOptions bound;
+    bound.grid_m = params.bound_grid_m;
+    bound.min_m = params.geofence_min_m;
+    bound.max_m = params.geofence_max_m;
+    try {
+      return std::make_unique<EgoForestWorld>(generateEgoForest(spec), bound);
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error(e.what());
+    }
+  }
   if (endsWith(options.world, ".pcd")) {
     PointCloudWorldOptions o;
     o.voxel_m = params.pcd_voxel_m;
@@ -52,7 +70,7 @@ std::unique_ptr<World> makeWorld(const SimOptions& options, const SimParams& par
     return PointCloudWorld::loadPcd(options.world, o);
   }
   throw std::runtime_error("unknown world '" + options.world +
-                           "' (use forest or the path of a .pcd file)");
+                           "' (use forest, ego-forest or the path of a .pcd file)");
 }
 
 Simulator::Simulator(const SimParams& params, const SimOptions& options)

@@ -23,7 +23,7 @@ constexpr int64_t kLockstepStartUtime = 1'000'000'000;
 
 // What a run simulates (mmh-sim's command line).
 struct SimOptions {
-  std::string world = "forest";                               // "forest" or the path of a .pcd file
+  std::string world = "forest";  // "forest", "ego-forest" or the path of a .pcd file
   Eigen::Vector3d size_m = Eigen::Vector3d(50.0, 50.0, 3.0);  // forest box, centred on x = y = 0
   double density_per_m2 = 0.1;
   int64_t seed = 7;  // forest seed
