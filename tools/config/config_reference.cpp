@@ -47,9 +47,10 @@ std::string configReferenceMarkdown() {
        << "|---|---|---|---|---|---|\n";
     for (const KeySpec& k : configKeys()) {
       if (k.section() != section.name) continue;
-      md << "| " << code(k.name) << " | " << k.typeName() << " | " << cell(k.unit()) << " | "
-         << cell(k.rangeText()) << " | " << code(k.default_yaml)
-         << (k.required ? "" : ", *optional*") << " | " << cell(k.doc) << " |\n";
+      md << "| " << code(k.name) << " | " << k.typeName() << " | "
+         << (k.unit().empty() ? "-" : cell(k.unit())) << " | " << cell(k.rangeText()) << " | "
+         << code(k.default_yaml) << (k.required ? "" : ", *optional*") << " | " << cell(k.doc)
+         << " |\n";
     }
   }
   md << "\n## Constraints between keys\n\n"
