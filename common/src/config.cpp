@@ -69,52 +69,75 @@ bool Config::has(const std::string& key) const {
   return true;
 }
 
-double Config::getDouble(const std::string& key, double min, double max) const {
-  const YAML::Node n = lookup(key);
+const KeySpec& Config::spec(const std::string& key, KeyType expected) {
+  const KeySpec& s = registeredConfigKey(key);
+  if (s.type != expected) {
+    throw std::logic_error("configuration key '" + key + "' is registered as " + s.typeName());
+  }
+  return s;
+}
+
+YAML::Node Config::valueOf(const KeySpec& spec) const {
+  if (!spec.required && !has(spec.name)) return YAML::Load(spec.default_yaml);
+  return lookup(spec.name);
+}
+
+double Config::getDouble(const std::string& key) const {
+  const KeySpec& s = spec(key, KeyType::kDouble);
+  const YAML::Node n = valueOf(s);
   double v = 0.0;
   try {
     v = n.as<double>();
   } catch (const YAML::Exception&) {
-    fail(key, "must be a number, allowed range " + formatRange(min, max));
+    fail(key, "must be a number, allowed range " + formatRange(s.min, s.max));
   }
-  if (!std::isfinite(v) || v < min || v > max) {
-    std::ostringstream s;
-    s << "= " << v << " is outside the allowed range " << formatRange(min, max);
-    fail(key, s.str());
+  if (!std::isfinite(v) || v < s.min || v > s.max) {
+    std::ostringstream out;
+    out << "= " << v << " is outside the allowed range " << formatRange(s.min, s.max);
+    fail(key, out.str());
   }
   return v;
 }
 
-int Config::getInt(const std::string& key, int min, int max) const {
-  const YAML::Node n = lookup(key);
+int Config::getInt(const std::string& key) const {
+  const KeySpec& s = spec(key, KeyType::kInt);
+  const YAML::Node n = valueOf(s);
   long long v = 0;
   try {
     v = n.as<long long>();
   } catch (const YAML::Exception&) {
-    fail(key, "must be an integer, allowed range " + formatRange(min, max));
+    fail(key, "must be an integer, allowed range " + formatRange(s.min, s.max));
   }
-  if (v < min || v > max) {
-    fail(key, "= " + std::to_string(v) + " is outside the allowed range " + formatRange(min, max));
+  if (v < s.min || v > s.max) {
+    fail(key,
+         "= " + std::to_string(v) + " is outside the allowed range " + formatRange(s.min, s.max));
   }
   return static_cast<int>(v);
 }
 
 bool Config::getBool(const std::string& key) const {
+  const YAML::Node n = valueOf(spec(key, KeyType::kBool));
   try {
-    return lookup(key).as<bool>();
+    return n.as<bool>();
   } catch (const YAML::Exception&) {
     fail(key, "must be true or false");
   }
 }
 
 std::string Config::getString(const std::string& key) const {
-  const YAML::Node n = lookup(key);
-  if (!n.IsScalar()) fail(key, "must be a string");
-  return n.as<std::string>();
+  const KeySpec& s = spec(key, KeyType::kEnum);
+  const YAML::Node n = valueOf(s);
+  if (!n.IsScalar()) fail(key, "must be one of: " + s.rangeText());
+  const std::string v = n.as<std::string>();
+  for (const std::string& allowed : s.allowed) {
+    if (v == allowed) return v;
+  }
+  fail(key, "= '" + v + "' is not one of: " + s.rangeText());
 }
 
-Eigen::Vector3d Config::getVector3(const std::string& key, double min, double max) const {
-  const YAML::Node n = lookup(key);
+Eigen::Vector3d Config::getVector3(const std::string& key) const {
+  const KeySpec& s = spec(key, KeyType::kVector3);
+  const YAML::Node n = valueOf(s);
   if (!n.IsSequence() || n.size() != 3) fail(key, "must be a list of 3 numbers");
   Eigen::Vector3d v;
   for (int i = 0; i < 3; ++i) {
@@ -123,22 +146,14 @@ Eigen::Vector3d Config::getVector3(const std::string& key, double min, double ma
     } catch (const YAML::Exception&) {
       fail(key, "must be a list of 3 numbers");
     }
-    if (!std::isfinite(v[i]) || v[i] < min || v[i] > max) {
-      std::ostringstream s;
-      s << "element " << i << " = " << v[i] << " is outside the allowed range "
-        << formatRange(min, max);
-      fail(key, s.str());
+    if (!std::isfinite(v[i]) || v[i] < s.min || v[i] > s.max) {
+      std::ostringstream out;
+      out << "element " << i << " = " << v[i] << " is outside the allowed range "
+          << formatRange(s.min, s.max);
+      fail(key, out.str());
     }
   }
   return v;
-}
-
-Eigen::Vector3i Config::getVector3i(const std::string& key, int min, int max) const {
-  const Eigen::Vector3d v = getVector3(key, min, max);
-  for (int i = 0; i < 3; ++i) {
-    if (v[i] != std::floor(v[i])) fail(key, "must be a list of 3 integers");
-  }
-  return v.cast<int>();
 }
 
 }  // namespace mmh

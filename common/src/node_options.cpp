@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 
+#include "mmh/common/config_validation.hpp"
 #include "mmh/common/log.hpp"
 
 #ifndef MMH_DEFAULT_CONFIG
@@ -34,7 +35,12 @@ Config loadNodeConfig(const NodeOptions& options) {
     setLogLevel(LogLevel::kError);
   else
     setLogLevel(LogLevel::kInfo);
-  return Config::loadFile(options.config_path.empty() ? defaultConfigPath() : options.config_path);
+  Config config =
+      Config::loadFile(options.config_path.empty() ? defaultConfigPath() : options.config_path);
+  // Once per node, on the whole file: a misspelt key would otherwise be ignored and its service
+  // would run on another value.
+  validateConfig(config);
+  return config;
 }
 
 }  // namespace mmh

@@ -49,8 +49,7 @@ int main(int argc, char** argv) {
   mmh::setLogServiceName("mmh-sim");
   try {
     const mmh::Config config = mmh::loadNodeConfig(node);
-    const auto max_scan_lag_us =
-        static_cast<int64_t>(config.getDouble("sim.max_scan_lag_s", 0.0, 60.0) * 1e6);
+    const auto max_scan_lag_us = static_cast<int64_t>(config.getDouble("sim.max_scan_lag_s") * 1e6);
     auto lcm = mmh::openLcm(node.lcm_url);
     mmh::ServiceContext ctx(*lcm, "mmh-sim", node.prefix);
     // Real time: simulated time starts at the wall clock, so every process shares one clock.

@@ -13,6 +13,7 @@
 #include "mmh/common/local_map_codec.hpp"
 #include "mmh/common/msg_convert.hpp"
 #include "mmh/common/node_options.hpp"
+#include "mmh/common/vehicle_limits.hpp"
 #include "mmh/plan_request_t.hpp"
 #include "mmh/plan_result_t.hpp"
 #include "scene.hpp"
@@ -98,8 +99,9 @@ int main(int argc, char** argv) {
   mmh::setLogServiceName("mmh-plan-request");
   try {
     const mmh::Config config = mmh::loadNodeConfig(node);
-    const double v_max = config.getDouble("vehicle.max_vel_mps", 0.1, 50.0);
-    const double a_max = config.getDouble("vehicle.max_acc_mps2", 0.1, 50.0);
+    const mmh::VehicleLimits limits = mmh::loadVehicleLimits(config);
+    const double v_max = limits.max_vel_mps;
+    const double a_max = limits.max_acc_mps2;
     auto lcm = mmh::openLcm(node.lcm_url);
     mmh::ServiceContext ctx(*lcm, "mmh-plan-request", node.prefix);
     Waiter waiter;

@@ -37,9 +37,9 @@ bool parsePillars(const std::string& text, std::vector<Cylinder>* out, std::stri
 
 std::unique_ptr<VoxelGrid> buildScene(const SceneOptions& options, const Config& config,
                                       const Eigen::Vector3d& centre) {
-  const double res = config.getDouble("map.resolution_m", 0.01, 2.0);
-  const Eigen::Vector3d size_m = config.getVector3("map.window_size_m", 0.5, 500.0);
-  const double inflation = config.getDouble("map.inflation_m", 0.0, 5.0);
+  const double res = config.getDouble("map.resolution_m");
+  const Eigen::Vector3d size_m = config.getVector3("map.window_size_m");
+  const double inflation = config.getDouble("map.inflation_m");
   std::vector<Cylinder> cylinders;
   std::string error;
   if (!parsePillars(options.pillars, &cylinders, &error)) throw std::invalid_argument(error);

@@ -6,7 +6,19 @@
 #include <fstream>
 #include <sstream>
 
+#include "mmh/common/config_registry.hpp"
+#include "mmh/common/config_validation.hpp"
+
 namespace mmh {
+namespace {
+
+[[noreturn]] void unknownKey(const std::string& key, const std::string& source) {
+  const std::string nearest = nearestConfigKey(key);
+  throw ConfigError("--set: key '" + key + "' does not exist in " + source +
+                    (nearest.empty() ? "" : " (did you mean '" + nearest + "'?)"));
+}
+
+}  // namespace
 
 std::vector<std::string> takeSetOptions(int* argc, char** argv) {
   std::vector<std::string> values;
@@ -48,13 +60,13 @@ Config applyConfigOverrides(const std::string& yaml_text, const std::string& sou
     for (size_t i = 0; i + 1 < parts.size(); ++i) {
       const YAML::Node& view = parent;
       if (!view.IsMap() || !view[parts[i]]) {
-        throw ConfigError("--set: key '" + key + "' does not exist in " + source);
+        unknownKey(key, source);
       }
       parent.reset(view[parts[i]]);
     }
     const YAML::Node& view = parent;
     if (parts.empty() || !view.IsMap() || !view[parts.back()]) {
-      throw ConfigError("--set: key '" + key + "' does not exist in " + source);
+      unknownKey(key, source);
     }
     if (view[parts.back()].IsMap()) {
       throw ConfigError("--set: key '" + key + "' is a section; set one of its keys");
@@ -79,7 +91,10 @@ Config loadConfigWithOverrides(const NodeOptions& options,
   std::ifstream in(config.source());
   std::stringstream text;
   text << in.rdbuf();
-  return applyConfigOverrides(text.str(), config.source(), assignments);
+  // The overridden file passes the same start-up validation as the file itself.
+  Config overridden = applyConfigOverrides(text.str(), config.source(), assignments);
+  validateConfig(overridden);
+  return overridden;
 }
 
 }  // namespace mmh

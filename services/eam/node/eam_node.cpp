@@ -5,9 +5,7 @@
 namespace mmh {
 
 EamNode::EamNode(ServiceContext& ctx, const Config& config)
-    : ctx_(ctx),
-      map_(config.getDouble("map.inflation_m", 0.0, 5.0)),
-      planner_(eam::loadEamParams(config)) {
+    : ctx_(ctx), map_(config.getDouble("map.inflation_m")), planner_(eam::loadEamParams(config)) {
   ctx_.subscribe(channels::kLocalMap, &EamNode::onLocalMap, this);
   ctx_.subscribe(channels::kPlanRequestEam, &EamNode::onPlanRequest, this);
 }

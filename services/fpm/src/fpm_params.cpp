@@ -1,20 +1,25 @@
 #include "mmh/fpm/fpm_params.hpp"
 
+#include "mmh/common/config_constraints.hpp"
+#include "mmh/common/geofence.hpp"
+#include "mmh/common/vehicle_limits.hpp"
+
 namespace mmh::fpm {
 
 Params loadParams(const Config& config) {
   Params p;
-  p.max_vel_mps = config.getDouble("vehicle.max_vel_mps", 0.1, 50.0);
-  p.max_acc_mps2 = config.getDouble("vehicle.max_acc_mps2", 0.1, 50.0);
-  p.geofence_min_m = config.getVector3("geofence.min_m", -1e6, 1e6);
-  p.geofence_max_m = config.getVector3("geofence.max_m", -1e6, 1e6);
-  if ((p.geofence_min_m.array() >= p.geofence_max_m.array()).any())
-    throw ConfigError(config.source() + ": geofence.min_m must be below geofence.max_m");
-  p.time_weight = config.getDouble("fpm.time_weight", 1e-3, 1e6);
-  p.penalty_weight = config.getDouble("fpm.penalty_weight", 1.0, 1e9);
-  p.limit_margin_ratio = config.getDouble("fpm.limit_margin_ratio", 0.0, 0.2);
-  p.samples_per_piece = config.getInt("fpm.samples_per_piece", 2, 100);
-  p.max_evaluations = config.getInt("fpm.max_evaluations", 10, 100000);
+  const VehicleLimits vehicle = loadVehicleLimits(config);
+  p.max_vel_mps = vehicle.max_vel_mps;
+  p.max_acc_mps2 = vehicle.max_acc_mps2;
+  const Geofence geofence = loadGeofence(config);
+  p.geofence_min_m = geofence.min_m;
+  p.geofence_max_m = geofence.max_m;
+  p.time_weight = config.getDouble("fpm.time_weight");
+  p.penalty_weight = config.getDouble("fpm.penalty_weight");
+  p.limit_margin_ratio = config.getDouble("fpm.limit_margin_ratio");
+  p.samples_per_piece = config.getInt("fpm.samples_per_piece");
+  p.max_evaluations = config.getInt("fpm.max_evaluations");
+  checkConfigConstraints(config);
   return p;
 }
 

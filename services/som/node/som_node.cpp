@@ -40,7 +40,7 @@ int16_t reasonCode(som::PlanStatus status) {
 
 SomNode::SomNode(ServiceContext& ctx, const Config& config)
     : ctx_(ctx),
-      receiver_(config.getDouble("map.inflation_m", 0.0, 5.0)),
+      receiver_(config.getDouble("map.inflation_m")),
       planner_(som::loadSomParams(config)) {
   ctx_.subscribe(channels::kLocalMap, &SomNode::onLocalMap, this);
   ctx_.subscribe(channels::kPlanRequestSom, &SomNode::onPlanRequest, this);

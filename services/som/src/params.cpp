@@ -1,75 +1,61 @@
 #include "mmh/som/params.hpp"
 
+#include "mmh/common/config_constraints.hpp"
+#include "mmh/common/geofence.hpp"
+#include "mmh/common/vehicle_limits.hpp"
+
 namespace mmh::som {
-namespace {
-
-// som.* keys are optional (the defaults of params.hpp apply); present ones are range-checked.
-double optDouble(const Config& c, const std::string& key, double def, double lo, double hi) {
-  return c.has(key) ? c.getDouble(key, lo, hi) : def;
-}
-int optInt(const Config& c, const std::string& key, int def, int lo, int hi) {
-  return c.has(key) ? c.getInt(key, lo, hi) : def;
-}
-
-}  // namespace
 
 SomParams loadSomParams(const Config& c) {
   SomParams p;
-  p.max_vel_mps = c.getDouble("vehicle.max_vel_mps", 0.1, 50.0);
-  p.max_acc_mps2 = c.getDouble("vehicle.max_acc_mps2", 0.1, 50.0);
-  p.geofence_min = c.getVector3("geofence.min_m", -1e5, 1e5);
-  p.geofence_max = c.getVector3("geofence.max_m", -1e5, 1e5);
-  if ((p.geofence_max - p.geofence_min).minCoeff() <= 0.0)
-    throw ConfigError(c.source() + ": geofence.max_m must exceed geofence.min_m on every axis");
+  const VehicleLimits vehicle = loadVehicleLimits(c);
+  p.max_vel_mps = vehicle.max_vel_mps;
+  p.max_acc_mps2 = vehicle.max_acc_mps2;
+  const Geofence geofence = loadGeofence(c);
+  p.geofence_min = geofence.min_m;
+  p.geofence_max = geofence.max_m;
 
-  p.astar_max_expansions = optInt(c, "som.astar_max_expansions", 200000, 1000, 50000000);
-  p.astar_heuristic_weight =
-      optDouble(c, "som.astar_heuristic_weight", p.astar_heuristic_weight, 1.0, 10.0);
-  p.start_escape_radius_m = optDouble(c, "som.start_escape_radius_m", 0.5, 0.0, 5.0);
-  p.start_escape_clearance_m =
-      optDouble(c, "som.start_escape_clearance_m", p.start_escape_clearance_m, 0.0, 5.0);
+  // som.* keys are optional: a missing one takes the registry's default.
+  p.astar_max_expansions = c.getInt("som.astar_max_expansions");
+  p.astar_heuristic_weight = c.getDouble("som.astar_heuristic_weight");
+  p.start_escape_radius_m = c.getDouble("som.start_escape_radius_m");
+  p.start_escape_clearance_m = c.getDouble("som.start_escape_clearance_m");
 
   CorridorParams& k = p.corridor;
-  k.box_margin_m = optDouble(c, "som.corridor_box_margin_m", k.box_margin_m, 0.3, 20.0);
-  k.box_margin_z_m = optDouble(c, "som.corridor_box_margin_z_m", k.box_margin_z_m, 0.2, 20.0);
-  k.early_round_margin_m =
-      optDouble(c, "som.corridor_early_round_margin_m", k.early_round_margin_m, 0.0, 20.0);
-  k.seed_length_m = optDouble(c, "som.corridor_seed_length_m", k.seed_length_m, 0.2, 50.0);
-  k.iterations = optInt(c, "som.corridor_iterations", k.iterations, 1, 10);
-  k.overlap_backoff_m =
-      optDouble(c, "som.corridor_overlap_backoff_m", k.overlap_backoff_m, 0.0, 5.0);
-  k.junction_margin_m =
-      optDouble(c, "som.corridor_junction_margin_m", k.junction_margin_m, 0.0, 1.0);
-  k.max_polytopes = optInt(c, "som.corridor_max_polytopes", k.max_polytopes, 1, 1000);
+  k.box_margin_m = c.getDouble("som.corridor_box_margin_m");
+  k.box_margin_z_m = c.getDouble("som.corridor_box_margin_z_m");
+  k.early_round_margin_m = c.getDouble("som.corridor_early_round_margin_m");
+  k.seed_length_m = c.getDouble("som.corridor_seed_length_m");
+  k.iterations = c.getInt("som.corridor_iterations");
+  k.overlap_backoff_m = c.getDouble("som.corridor_overlap_backoff_m");
+  k.junction_margin_m = c.getDouble("som.corridor_junction_margin_m");
+  k.max_polytopes = c.getInt("som.corridor_max_polytopes");
 
   OptimizerParams& o = p.optimizer;
-  o.time_weight = optDouble(c, "som.time_weight", o.time_weight, 1e-3, 1e7);
-  o.piece_length_m = optDouble(c, "som.piece_length_m", o.piece_length_m, 0.2, 50.0);
-  o.samples_per_piece = optInt(c, "som.samples_per_piece", o.samples_per_piece, 2, 128);
-  o.weight_corridor = optDouble(c, "som.weight_corridor", o.weight_corridor, 1.0, 1e9);
-  o.weight_velocity = optDouble(c, "som.weight_velocity", o.weight_velocity, 1.0, 1e9);
-  o.weight_acceleration = optDouble(c, "som.weight_acceleration", o.weight_acceleration, 1.0, 1e9);
-  o.penalty_smoothing = optDouble(c, "som.penalty_smoothing", o.penalty_smoothing, 1e-6, 1.0);
-  o.max_evaluations = optInt(c, "som.max_evaluations", o.max_evaluations, 10, 100000);
-  o.rel_cost_tolerance = optDouble(c, "som.rel_cost_tolerance", o.rel_cost_tolerance, 0.0, 0.1);
-  o.lbfgs_memory = optInt(c, "som.lbfgs_memory", o.lbfgs_memory, 1, 64);
-  o.first_step = optDouble(c, "som.first_step", o.first_step, 1e-4, 100.0);
-  o.limit_margin = optDouble(c, "som.limit_margin", o.limit_margin, 0.0, 0.2);
-  o.corridor_margin_m = optDouble(c, "som.corridor_margin_m", o.corridor_margin_m, 0.0, 0.5);
-  o.extra_rounds = optInt(c, "som.extra_rounds", o.extra_rounds, 0, 10);
-  o.extra_round_evaluations =
-      optInt(c, "som.extra_round_evaluations", o.extra_round_evaluations, 1, 100000);
-  o.extra_round_weight_factor =
-      optDouble(c, "som.extra_round_weight_factor", o.extra_round_weight_factor, 1.0, 1000.0);
-  o.extra_round_limit_excess =
-      optDouble(c, "som.extra_round_limit_excess", o.extra_round_limit_excess, 0.0, 1.0);
-  o.max_repair_stretch = optDouble(c, "som.max_repair_stretch", o.max_repair_stretch, 1.0, 10.0);
-  o.repair_tolerance = optDouble(c, "som.repair_tolerance", o.repair_tolerance, 0.0, 0.05);
+  o.time_weight = c.getDouble("som.time_weight");
+  o.piece_length_m = c.getDouble("som.piece_length_m");
+  o.samples_per_piece = c.getInt("som.samples_per_piece");
+  o.weight_corridor = c.getDouble("som.weight_corridor");
+  o.weight_velocity = c.getDouble("som.weight_velocity");
+  o.weight_acceleration = c.getDouble("som.weight_acceleration");
+  o.penalty_smoothing = c.getDouble("som.penalty_smoothing");
+  o.max_evaluations = c.getInt("som.max_evaluations");
+  o.rel_cost_tolerance = c.getDouble("som.rel_cost_tolerance");
+  o.lbfgs_memory = c.getInt("som.lbfgs_memory");
+  o.first_step = c.getDouble("som.first_step");
+  o.limit_margin = c.getDouble("som.limit_margin");
+  o.corridor_margin_m = c.getDouble("som.corridor_margin_m");
+  o.extra_rounds = c.getInt("som.extra_rounds");
+  o.extra_round_evaluations = c.getInt("som.extra_round_evaluations");
+  o.extra_round_weight_factor = c.getDouble("som.extra_round_weight_factor");
+  o.extra_round_limit_excess = c.getDouble("som.extra_round_limit_excess");
+  o.max_repair_stretch = c.getDouble("som.max_repair_stretch");
+  o.repair_tolerance = c.getDouble("som.repair_tolerance");
 
   VerifyParams& v = p.verify;
-  v.limit_tolerance = optDouble(c, "som.verify_limit_tolerance", v.limit_tolerance, 0.0, 0.2);
-  v.corridor_tolerance_m =
-      optDouble(c, "som.verify_corridor_tolerance_m", v.corridor_tolerance_m, 0.0, 0.5);
+  v.limit_tolerance = c.getDouble("som.verify_limit_tolerance");
+  v.corridor_tolerance_m = c.getDouble("som.verify_corridor_tolerance_m");
+  checkConfigConstraints(c);
   return p;
 }
 

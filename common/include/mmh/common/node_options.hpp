@@ -17,7 +17,8 @@ struct NodeOptions {
 };
 
 void addNodeOptions(ArgParser& parser, NodeOptions* options);
-// Applies the log level and loads the config (throws ConfigError with a clear message).
+// Applies the log level, loads the config and validates it against the key registry (throws
+// ConfigError listing every problem).
 Config loadNodeConfig(const NodeOptions& options);
 std::string defaultConfigPath();
 

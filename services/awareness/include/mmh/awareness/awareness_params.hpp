@@ -12,8 +12,8 @@ struct Params {
   double inflation_m = 0.3;   // map.inflation_m: obstacles grow by this for JudgePointSafe
 };
 
-// Reads awareness.sensor_range_m (0.1 .. 100), awareness.narrow_probe_dist_m (0.05 .. 10) and
-// map.inflation_m (0 .. 5). Throws ConfigError.
+// Reads awareness.sensor_range_m, awareness.narrow_probe_dist_m and map.inflation_m (ranges and
+// defaults: mmh/common/config_registry.hpp). Throws ConfigError.
 Params loadParams(const Config& config);
 
 }  // namespace mmh::awareness

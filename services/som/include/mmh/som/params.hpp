@@ -84,7 +84,8 @@ struct SomParams {
   VerifyParams verify;
 };
 
-// Reads vehicle.*, geofence.* and som.* (missing som keys keep their defaults above).
+// Reads vehicle.*, geofence.* and som.* (a missing som key takes its default from
+// mmh/common/config_registry.hpp; the initialisers above serve code that builds params directly).
 SomParams loadSomParams(const Config& config);
 
 }  // namespace mmh::som

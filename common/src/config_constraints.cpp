@@ -1,0 +1,144 @@
+#include "mmh/common/config_constraints.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "mmh/common/config_registry.hpp"
+
+namespace mmh {
+namespace {
+
+std::string quoted(const std::string& key, double value) {
+  std::ostringstream s;
+  s << "'" << key << "' = " << value;
+  return s.str();
+}
+
+// a <= b + offset (both doubles).
+ConfigConstraint atMost(const std::string& a, const std::string& b, double offset,
+                        const std::string& why) {
+  std::ostringstream rule;
+  rule << a << " <= " << b;
+  if (offset != 0.0) rule << (offset > 0 ? " + " : " - ") << std::abs(offset);
+  return {{a, b}, rule.str(), why, [a, b, offset](const Config& c) -> std::string {
+            const double va = c.getDouble(a), vb = c.getDouble(b);
+            if (va <= vb + offset) return "";
+            std::ostringstream s;
+            s << quoted(a, va) << " exceeds " << quoted(b, vb);
+            if (offset != 0.0) s << (offset > 0 ? " + " : " - ") << std::abs(offset);
+            return s.str();
+          }};
+}
+
+// a >= b + offset (both doubles).
+ConfigConstraint atLeast(const std::string& a, const std::string& b, double offset,
+                         const std::string& why) {
+  std::ostringstream rule;
+  rule << a << " >= " << b;
+  if (offset != 0.0) rule << (offset > 0 ? " + " : " - ") << std::abs(offset);
+  return {{a, b}, rule.str(), why, [a, b, offset](const Config& c) -> std::string {
+            const double va = c.getDouble(a), vb = c.getDouble(b);
+            // A small tolerance: 0.25 + 0.02 is not exactly 0.27 in binary.
+            if (va >= vb + offset - 1e-9) return "";
+            std::ostringstream s;
+            s << quoted(a, va) << " is below " << quoted(b, vb);
+            if (offset != 0.0) s << (offset > 0 ? " + " : " - ") << std::abs(offset);
+            return s.str();
+          }};
+}
+
+std::vector<ConfigConstraint> buildConstraints() {
+  std::vector<ConfigConstraint> c;
+  c.push_back({{"geofence.min_m", "geofence.max_m"},
+               "geofence.max_m > geofence.min_m on every axis",
+               "the geofence must be a non-empty box",
+               [](const Config& config) -> std::string {
+                 const Eigen::Vector3d lo = config.getVector3("geofence.min_m");
+                 const Eigen::Vector3d hi = config.getVector3("geofence.max_m");
+                 if ((hi.array() > lo.array()).all()) return "";
+                 return "'geofence.max_m' must exceed 'geofence.min_m' on every axis";
+               }});
+  c.push_back(atMost("arbiter.check_inflation_m", "map.inflation_m", 0.0,
+                     "a freshly verified answer must not look colliding to the arbiter"));
+  c.push_back({{"arbiter.answer_deadline_s", "arbiter.replan_lead_s"},
+               "arbiter.answer_deadline_s <= arbiter.replan_lead_s (when replan_lead_s > 0)",
+               "an answer must arrive before its trajectory takes effect",
+               [](const Config& config) -> std::string {
+                 const double deadline = config.getDouble("arbiter.answer_deadline_s");
+                 const double lead = config.getDouble("arbiter.replan_lead_s");
+                 if (lead <= 0.0 || deadline <= lead) return "";
+                 return quoted("arbiter.answer_deadline_s", deadline) + " exceeds " +
+                        quoted("arbiter.replan_lead_s", lead);
+               }});
+  c.push_back({{"map.window_size_m", "vehicle.max_vel_mps", "arbiter.planning_horizon_s"},
+               "map.window_size_m x and y >= 2 x vehicle.max_vel_mps x arbiter.planning_horizon_s",
+               "the local target (up to v_max x horizon away) must lie inside the map window",
+               [](const Config& config) -> std::string {
+                 const Eigen::Vector3d window = config.getVector3("map.window_size_m");
+                 const double v_max = config.getDouble("vehicle.max_vel_mps");
+                 const double horizon = config.getDouble("arbiter.planning_horizon_s");
+                 const double range = v_max * horizon;
+                 if (std::min(window.x(), window.y()) >= 2.0 * range - 1e-9) return "";
+                 std::ostringstream s;
+                 s << "'map.window_size_m' (x, y) = (" << window.x() << ", " << window.y()
+                   << ") is smaller than twice the planning range 'vehicle.max_vel_mps' x "
+                      "'arbiter.planning_horizon_s' = "
+                   << range << " m";
+                 return s.str();
+               }});
+  const std::string escape_why =
+      "a planner's way out of the margin must not end inside the arbiter's check margin";
+  c.push_back(
+      atLeast("som.start_escape_clearance_m", "arbiter.check_inflation_m", 0.02, escape_why));
+  c.push_back(
+      atLeast("eam.start_escape_clearance_m", "arbiter.check_inflation_m", 0.02, escape_why));
+  c.push_back(atLeast("sim.lidar.vmax_deg", "sim.lidar.vmin_deg", 0.0,
+                      "the LiDAR's elevation interval must not be empty"));
+  c.push_back(atLeast("mapping.occupancy_threshold", "mapping.clamp_min", 0.0,
+                      "a clamped cell must be able to fall below the threshold"));
+  c.push_back(atMost("mapping.occupancy_threshold", "mapping.clamp_max", 0.0,
+                     "a clamped cell must be able to rise above the threshold"));
+  return c;
+}
+
+bool available(const Config& config, const std::string& key) {
+  return config.has(key) || !registeredConfigKey(key).required;
+}
+
+}  // namespace
+
+const std::vector<ConfigConstraint>& configConstraints() {
+  static const std::vector<ConfigConstraint> constraints = buildConstraints();
+  return constraints;
+}
+
+std::vector<std::string> constraintViolations(const Config& config) {
+  std::vector<std::string> out;
+  for (const ConfigConstraint& constraint : configConstraints()) {
+    if (!std::all_of(constraint.keys.begin(), constraint.keys.end(),
+                     [&](const std::string& k) { return available(config, k); }))
+      continue;
+    std::string what;
+    try {
+      what = constraint.violation(config);
+    } catch (const ConfigError&) {
+      continue;  // an unreadable value: reported by whoever reads it
+    }
+    if (!what.empty()) {
+      out.push_back(config.source() + ": " + what + " (" + constraint.rule + ": " + constraint.why +
+                    ")");
+    }
+  }
+  return out;
+}
+
+void checkConfigConstraints(const Config& config) {
+  const std::vector<std::string> violations = constraintViolations(config);
+  if (violations.empty()) return;
+  std::string message = violations.front();
+  for (size_t i = 1; i < violations.size(); ++i) message += "\n" + violations[i];
+  throw ConfigError(message);
+}
+
+}  // namespace mmh
