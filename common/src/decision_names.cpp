@@ -39,6 +39,8 @@ const char* outcomeName(int outcome) {
       return "reached";
     case arbiter_status_t::OUTCOME_REJECTED:
       return "rejected";
+    case arbiter_status_t::OUTCOME_UNREACHABLE:
+      return "unreachable";
   }
   return "?";
 }

@@ -132,6 +132,7 @@ void ArbiterNode::flush() {
     msg.detail = d.detail;
     ctx_.publish(channels::kArbiterStatus, msg);
     if (d.outcome == arbiter::Outcome::kStopping) logWarn("arbiter: stopping: " + d.detail);
+    if (d.outcome == arbiter::Outcome::kUnreachable) logWarn("arbiter: " + d.detail);
     if (d.outcome == arbiter::Outcome::kFailed && failed_log_.shouldLog()) {
       logWarn("arbiter: decision " + std::to_string(d.decision_seq) + " failed: " + d.detail);
     }
@@ -146,6 +147,8 @@ void ArbiterNode::flush() {
   mirror("stops", n.stops);
   mirror("failed_decisions", n.failures);  // e.g. an unreachable goal: every mode fails
   mirror("rejected_answers", n.rejected_answers);
+  mirror("unreachable_goals", n.unreachable_goals);
+  mirror("back_offs", n.back_offs);
   if (arbiter_.odometryStale(now)) {
     ctx_.setState(heartbeat_t::STATE_DEGRADED, "ODOMETRY is stale: not planning");
   }

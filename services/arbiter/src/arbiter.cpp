@@ -19,7 +19,14 @@ int modeIndex(Mode m) {
 
 }  // namespace
 
-Arbiter::Arbiter(const ArbiterParams& params) : params_(params), chain_(params.policy) {}
+// Recently flown positions, 5 per second over the last 20 s, are the back-off candidates.
+constexpr double kBackOffHistoryS = 20.0;
+constexpr double kBackOffSamplePeriodS = 0.2;
+
+Arbiter::Arbiter(const ArbiterParams& params)
+    : params_(params),
+      chain_(params.policy),
+      progress_(params.progress_min_step_m, kBackOffHistoryS, kBackOffSamplePeriodS) {}
 
 bool Arbiter::mapStale(int64_t now) const {
   return map_seq_ == 0 || (now - map_utime_) * kUs > params_.stale_map_s;
@@ -54,6 +61,7 @@ bool Arbiter::setGoal(int64_t goal_id, const Eigen::Vector3d& goal, int64_t now,
   goal_ = Goal{goal_id, goal};
   phase_ = Phase::kNewGoal;
   chain_.reset();
+  progress_.restart(now_);
   evaluate(now_);
   return true;
 }
@@ -80,6 +88,7 @@ void Arbiter::onOdometry(const KinematicState& state, int64_t now) {
   odometry_ = state;
   odometry_utime_ = std::max(odometry_utime_, now);
   now_ = std::max(now_, now);
+  if (hasGoal()) progress_.observe(now_, state.position, (state.position - goal_.position).norm());
   if (stopped_for_stale_odometry_ && !odometryStale(now_)) stopped_for_stale_odometry_ = false;
   evaluate(now_);
 }
@@ -125,6 +134,20 @@ bool Arbiter::collisionAhead(int64_t now) const {
   return firstCollisionTime(*grid_, t, t0, t.duration()).has_value();
 }
 
+bool Arbiter::stopCanWait(int64_t now) const {
+  if (!grid_ || !hasCommitted() || params_.stop_decision_margin_s <= 0.0) return false;
+  const Trajectory& t = committed_.trajectory;
+  const double later_s =
+      (now - committed_.start_utime) * kUs + params_.replan_lead_s + params_.stop_decision_margin_s;
+  if (later_s >= t.duration()) return false;
+  if (firstCollisionTime(*grid_, t, std::max(0.0, (now - committed_.start_utime) * kUs), later_s)) {
+    return false;
+  }
+  const Trajectory later_stop = chooseStoppingTrajectory(
+      grid_, t, later_s, params_.max_acc_mps2, params_.max_vel_mps, params_.check_inflation_m);
+  return !firstCollisionTime(*grid_, later_stop, 0.0, later_stop.duration()).has_value();
+}
+
 bool Arbiter::collisionThreat(int64_t now, double* eta_s) const {
   if (!grid_ || !hasCommitted()) return false;
   const Trajectory& t = committed_.trajectory;
@@ -147,6 +170,7 @@ ReplanView Arbiter::replanView(int64_t now) const {
   v.flown_since_last_round_m = (vehiclePosition() - last_round_position_).norm();
   v.to_goal_m = (vehiclePosition() - goal_.position).norm();
   v.retry_mode = chain_.next(map_seq_);
+  v.since_last_round_s = (now - last_round_utime_) * kUs;
   return v;
 }
 
@@ -189,19 +213,48 @@ void Arbiter::evaluate(int64_t now) {
     return;
   }
   if (usesAwareness(params_.policy) && (!awareness_ || awareness_->goal_id != goal_.id)) return;
+  const StuckResponse stuck = stuckResponse(progress_.secondsWithoutProgress(now), params_);
+  if (stuck == StuckResponse::kGiveUp && phase_ != Phase::kUnreachable &&
+      phase_ != Phase::kNewGoal) {
+    giveUp(now);
+  }
+  if (phase_ == Phase::kRecovering) {
+    stopIfNoTimeLeft(now, false, "no usable answer and the danger ahead is close", Trigger::kRetry);
+  }
   const ReplanView view = replanView(now);
   const Trigger trigger = nextTrigger(view, params_);
   if (trigger == Trigger::kNone) return;
   const bool braking_in_stop =
       committed_.mode == Mode::kStop && odometry_->velocity.norm() > params_.braking_speed_mps;
-  if (retryThrottled(trigger, braking_in_stop, (now - last_round_utime_) * kUs, params_)) return;
+  const bool is_stuck = stuck != StuckResponse::kNone;
+  if (retryThrottled(trigger, braking_in_stop, is_stuck, view.since_last_round_s, params_)) return;
   const std::vector<Mode> modes = modesFor(trigger, view, params_);
   if (modes.empty()) return;
   if (trigger == Trigger::kRetry) chain_.beginRetry(modes.front());
-  startRound(trigger, modes, now);
+  startRound(trigger, modes, now, is_stuck);
 }
 
-void Arbiter::startRound(Trigger trigger, const std::vector<Mode>& modes, int64_t now) {
+void Arbiter::giveUp(int64_t now) {
+  phase_ = Phase::kUnreachable;
+  ++counters_.unreachable_goals;
+  const std::string why =
+      "goal " + std::to_string(goal_.id) + " unreachable: no progress toward it for " +
+      std::to_string(static_cast<int>(progress_.secondsWithoutProgress(now))) +
+      " s; holding, one retry every " +
+      std::to_string(static_cast<int>(params_.unreachable_retry_s)) +
+      " s (a new goal resumes at once)" +
+      (last_failure_notes_.empty() ? "" : "; last failure: " + last_failure_notes_);
+  if (shouldStop(StopCause::kUnreachable, stopView(now), params_)) {
+    commitStop(now, why, Trigger::kNone);
+  }
+  DecisionOut d;
+  d.outcome = Outcome::kUnreachable;
+  d.local_target = goal_.position;
+  d.detail = why;
+  pushDecision(d);
+}
+
+void Arbiter::startRound(Trigger trigger, const std::vector<Mode>& modes, int64_t now, bool stuck) {
   if (trigger != Trigger::kRetry) chain_.reset();  // a new episode of attempts
   last_round_utime_ = now;
   Round round;
@@ -219,8 +272,26 @@ void Arbiter::startRound(Trigger trigger, const std::vector<Mode>& modes, int64_
       isClearOf(*grid_, committed.position(committed.duration()), params_.inflation_m);
   const bool use_reference =
       collisionKeepsReference(trigger, end_clear, start_s, committed.duration(), params_);
+  // Stuck: once per stuck_after_s, a retry backs off to recently flown free space, so that the
+  // next rounds start clear of the obstacle they keep failing at.
+  const bool may_back_off =
+      stuck && trigger == Trigger::kRetry && grid_ &&
+      (!last_backoff_utime_ || (now - *last_backoff_utime_) * kUs >= params_.stuck_after_s);
+  const std::optional<Eigen::Vector3d> back_off =
+      may_back_off ? progress_.backOffPoint(*grid_, round.start.state.position,
+                                            params_.backoff_min_distance_m,
+                                            params_.inflation_m + params_.backoff_clearance_m)
+                   : std::nullopt;
   Trajectory reference;
-  if (use_reference) {
+  if (back_off) {
+    round.target = *back_off;
+    round.target_is_goal = false;
+    last_backoff_utime_ = now;
+    ++counters_.back_offs;
+    round.note = "stuck for " +
+                 std::to_string(static_cast<int>(progress_.secondsWithoutProgress(now))) +
+                 " s: backing off to recently flown free space; ";
+  } else if (use_reference) {
     reference = committed.tail(start_s);
     round.target = committed.position(committed.duration());
     round.target_is_goal = committed_.ends_at_goal;
@@ -242,7 +313,7 @@ void Arbiter::startRound(Trigger trigger, const std::vector<Mode>& modes, int64_
     r.map_seq = map_seq_;
     r.target = round.target;
     r.goal = goal_.position;
-    if (m == Mode::kEam && use_reference) r.reference = reference;
+    if (m == Mode::kEam && use_reference && !back_off) r.reference = reference;
     chain_.markAsked(m);
     round.requests.push_back(r);
     requests_.push_back(r);
@@ -254,7 +325,10 @@ void Arbiter::startRound(Trigger trigger, const std::vector<Mode>& modes, int64_
 }
 
 void Arbiter::enterPhase(Phase phase) {
-  if (phase_ != Phase::kNewGoal) phase_ = phase;
+  if (phase_ == Phase::kNewGoal) return;
+  // Unreachable until a round commits (or a new goal comes).
+  if (phase_ == Phase::kUnreachable && phase != Phase::kTracking) return;
+  phase_ = phase;
 }
 
 void Arbiter::commit(const Trajectory& trajectory, int64_t start_utime, Mode mode,
@@ -306,7 +380,7 @@ void Arbiter::decide(int64_t now, bool by_deadline) {
 
   const ModeAnswer* best = nullptr;
   double best_score = 0.0;
-  std::string notes;
+  std::string notes = round.note;
   for (const ModeAnswer& a : round.answers) {
     d.compute_us[modeIndex(a.mode)] = a.compute_us;
     if (!a.ok) {
@@ -336,6 +410,7 @@ void Arbiter::decide(int64_t now, bool by_deadline) {
     best = nullptr;
   }
   if (best) {
+    if (phase_ == Phase::kUnreachable) progress_.restart(now);  // a new chance to progress
     commit(best->trajectory, round.start.start_utime, best->mode, round.target_is_goal);
     enterPhase(Phase::kTracking);
     chain_.reset();
@@ -354,14 +429,20 @@ void Arbiter::decide(int64_t now, bool by_deadline) {
   }
   d.outcome = Outcome::kFailed;
   d.detail = notes;
+  last_failure_notes_ = notes;
+  pushDecision(d);
+  stopIfNoTimeLeft(now, by_deadline, "no usable answer and danger ahead: " + notes, round.trigger);
+}
+
+void Arbiter::stopIfNoTimeLeft(int64_t now, bool by_deadline, const std::string& why,
+                               Trigger trigger) {
   StopView stop = stopView(now);
   stop.danger_ahead = collisionAhead(now);
   stop.fallback_exhausted = chain_.exhausted();
   stop.by_deadline = by_deadline;
-  pushDecision(d);
-  if (shouldStop(StopCause::kNoUsableAnswer, stop, params_)) {
-    commitStop(now, "no usable answer and danger ahead: " + notes, round.trigger);
-  }
+  if (!stop.danger_ahead || stop.committed_is_stop) return;
+  stop.stop_can_wait = stopCanWait(now);
+  if (shouldStop(StopCause::kNoUsableAnswer, stop, params_)) commitStop(now, why, trigger);
 }
 
 void Arbiter::onStaleOdometry(int64_t now) {

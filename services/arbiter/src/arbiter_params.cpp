@@ -78,7 +78,15 @@ ArbiterParams loadArbiterParams(const Config& config) {
   p.replan_fraction = config.getDouble("arbiter.replan_fraction");
   p.reference_min_remaining_s = config.getDouble("arbiter.reference_min_remaining_s");
   p.stop_min_speed_mps = config.getDouble("arbiter.stop_min_speed_mps");
+  p.stop_decision_margin_s = config.getDouble("arbiter.stop_decision_margin_s");
   p.braking_speed_mps = config.getDouble("arbiter.braking_speed_mps");
+  p.progress_min_step_m = config.getDouble("arbiter.progress_min_step_m");
+  p.stuck_after_s = config.getDouble("arbiter.stuck_after_s");
+  p.stuck_retry_period_s = config.getDouble("arbiter.stuck_retry_period_s");
+  p.backoff_min_distance_m = config.getDouble("arbiter.backoff_min_distance_m");
+  p.backoff_clearance_m = config.getDouble("arbiter.backoff_clearance_m");
+  p.give_up_s = config.getDouble("arbiter.give_up_s");
+  p.unreachable_retry_s = config.getDouble("arbiter.unreachable_retry_s");
   p.start_position_tolerance_m = config.getDouble("arbiter.start_position_tolerance_m");
   p.start_velocity_tolerance_mps = config.getDouble("arbiter.start_velocity_tolerance_mps");
   p.start_acceleration_tolerance_mps2 =

@@ -50,6 +50,8 @@ const char* toString(Outcome outcome) {
       return "reached";
     case Outcome::kRejected:
       return "rejected";
+    case Outcome::kUnreachable:
+      return "unreachable";
   }
   return "?";
 }

@@ -14,6 +14,8 @@ const char* toString(Phase phase) {
       return "recovering";
     case Phase::kReached:
       return "reached";
+    case Phase::kUnreachable:
+      return "unreachable";
   }
   return "?";
 }

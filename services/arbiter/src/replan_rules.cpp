@@ -13,6 +13,10 @@ bool usesLazyRules(Policy policy) {
 Trigger nextTrigger(const ReplanView& v, const ArbiterParams& params) {
   if (v.phase == Phase::kNewGoal)
     return v.has_committed ? Trigger::kGoalChanged : Trigger::kInitial;
+  if (v.phase == Phase::kUnreachable) {
+    return v.retry_mode && v.since_last_round_s >= params.unreachable_retry_s ? Trigger::kRetry
+                                                                              : Trigger::kNone;
+  }
   // While recovering, the fallback chain goes on: a collision seen again on the next map must not
   // restart it with EAM forever, never reaching SOM or the stop.
   const bool recovering = v.phase == Phase::kRecovering;
@@ -66,11 +70,18 @@ bool collisionNeedsRoundNow(double hit_s, double elapsed_s, double duration_s, b
            hit_s > halfway_s + params.collision_margin_s);
 }
 
-bool retryThrottled(Trigger trigger, bool braking_in_stop, double since_last_round_s,
+bool retryThrottled(Trigger trigger, bool braking_in_stop, bool stuck, double since_last_round_s,
                     const ArbiterParams& params) {
   // (A collision on the stop itself is not throttled: only an evasive plan can help then.)
-  return braking_in_stop && trigger == Trigger::kRetry &&
-         since_last_round_s < params.stop_retry_period_s;
+  if (trigger != Trigger::kRetry) return false;
+  return (braking_in_stop && since_last_round_s < params.stop_retry_period_s) ||
+         (stuck && since_last_round_s < params.stuck_retry_period_s);
+}
+
+StuckResponse stuckResponse(double no_progress_s, const ArbiterParams& params) {
+  if (no_progress_s >= params.give_up_s) return StuckResponse::kGiveUp;
+  if (no_progress_s >= params.stuck_after_s) return StuckResponse::kBackOff;
+  return StuckResponse::kNone;
 }
 
 bool collisionKeepsReference(Trigger trigger, bool end_clear, double start_s, double duration_s,
@@ -101,9 +112,14 @@ bool shouldStop(StopCause cause, const StopView& v, const ArbiterParams& params)
       return v.has_committed && !v.committed_is_stop &&
              v.planned_speed_mps > params.stop_min_speed_mps;
     case StopCause::kNoUsableAnswer:
-      // Danger ahead and nothing left to try (or no time left): brake now rather than fly into
-      // it. A stop already under way brakes as hard as a new one would: recommitting only resets.
-      return v.danger_ahead && !v.committed_is_stop && (v.fallback_exhausted || v.by_deadline);
+      // Danger ahead and nothing left to try (or no time left): brake rather than fly into it -
+      // but only once braking cannot wait any longer, so that the modes keep their chance on
+      // newer maps. A stop already under way brakes as hard as a new one would.
+      return v.danger_ahead && !v.committed_is_stop && (v.fallback_exhausted || v.by_deadline) &&
+             !v.stop_can_wait;
+    case StopCause::kUnreachable:
+      return v.has_committed && !v.committed_is_stop &&
+             v.planned_speed_mps > params.stop_min_speed_mps;
   }
   return false;
 }

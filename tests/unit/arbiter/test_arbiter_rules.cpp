@@ -270,7 +270,8 @@ TEST_F(ArbiterRules, NoAnswerByTheDeadlineWithDangerAheadCommitsAStop) {
   ASSERT_TRUE(fly(*a, 0.01, t1).empty());
   const KinematicState before = a->committed().state((at(t1) - a->committedStartUtime()) * 1e-6);
   ASSERT_GT(before.velocity.norm(), 1.0);
-  putPillar(before.position.x() + 4.0, 0.0, 0.4);
+  // Near enough that a stop begun stop_decision_margin_s later would reach it.
+  putPillar(before.position.x() + 2.5, 0.0, 0.4);
   a->onMapUpdated(grid_, ++map_seq_, at(t1), at(t1));
   auto eam = a->takeRequests();
   ASSERT_EQ(eam.size(), 1u);
@@ -290,6 +291,78 @@ TEST_F(ArbiterRules, NoAnswerByTheDeadlineWithDangerAheadCommitsAStop) {
   EXPECT_LT((stop.state(0).velocity - s.velocity).norm(), 0.05);  // s is 10 ms earlier
   EXPECT_LT(stop.velocity(stop.duration()).norm(), 1e-6);
   EXPECT_LE(stop.maxAcceleration(), params_.max_acc_mps2 + 1e-9);
+}
+
+TEST_F(ArbiterRules, AFarDangerLetsTheStopWaitUntilItCannotWaitAnyLonger) {
+  params_.stale_map_s = 10.0;  // no new maps in this test, and no stale-map stop either
+  params_.defer_far_collisions = false;
+  auto a = started(Policy::kMmh);
+  auto r = a->takeRequests().at(0);
+  a->onAnswer(okAnswer(r), at(0.001));
+  ASSERT_TRUE(a->takeCommit());
+  const double t1 = std::floor(0.45 * a->committed().duration() * 10.0) / 10.0;
+  ASSERT_TRUE(fly(*a, 0.01, t1).empty());
+  const Vector3d p1 = a->committed().position((at(t1) - a->committedStartUtime()) * 1e-6);
+  const Vector3d pillar(p1.x() + 7.0, 0.0, 0.0);
+  putPillar(pillar.x(), 0.0, 0.4);
+  a->onMapUpdated(grid_, ++map_seq_, at(t1), at(t1));
+  ASSERT_EQ(a->takeRequests().size(), 1u);  // EAM, which never answers; nor does SOM after it
+  std::optional<CommitOut> stop;
+  double stop_time = 0.0;
+  for (double t = t1 + 0.01; t < t1 + 6.0 && !stop; t += 0.01) {
+    const int64_t now = at(t);
+    a->onOdometry(a->committed().state((now - a->committedStartUtime()) * 1e-6), now);
+    a->takeRequests();
+    stop = a->takeCommit();
+    stop_time = t;
+  }
+  ASSERT_TRUE(stop.has_value());
+  EXPECT_EQ(stop->mode, Mode::kStop);
+  // Not at the first deadline, but once the danger came close; and the stop ends clear of it.
+  EXPECT_GT(stop_time, t1 + 2.0 * params_.answer_deadline_s + 0.1);
+  const Trajectory& t = stop->trajectory;
+  EXPECT_FALSE(mmh::firstCollisionTime(grid_, t, 0.0, t.duration()).has_value());
+  EXPECT_LT(t.velocity(t.duration()).norm(), 1e-6);
+  EXPECT_LT((t.position(t.duration()) - pillar).head<2>().norm(), 0.4 + 1.5);  // it came close
+}
+
+TEST_F(ArbiterRules, WithoutProgressRetriesSlowDownThenTheGoalIsUnreachableUntilANewOne) {
+  auto a = started(Policy::kMmh, false);
+  int requests = 0;
+  std::optional<DecisionOut> unreachable;
+  // Every mode fails; the vehicle stays at rest with fresh maps at 10 Hz for 40 s.
+  for (double t = 0.0; t < 40.0; t += 0.01) {
+    const int64_t now = at(t);
+    if (std::lround(t * 100) % 10 == 0) a->onMapUpdated(grid_, ++map_seq_, now, now);
+    a->onOdometry(rest(Vector3d(0, 0, 1.2)), now);
+    for (const auto& r : a->takeRequests()) {
+      ++requests;
+      a->onAnswer(failedAnswer(r), now);
+    }
+    for (const auto& d : a->takeDecisions()) {
+      if (d.outcome == Outcome::kUnreachable) unreachable = d;
+    }
+  }
+  ASSERT_TRUE(unreachable.has_value());
+  EXPECT_EQ(a->phase(), Phase::kUnreachable);
+  EXPECT_NE(unreachable->detail.find("unreachable: no progress"), std::string::npos)
+      << unreachable->detail;
+  EXPECT_NE(unreachable->detail.find("no path"), std::string::npos);  // the last failure
+  EXPECT_EQ(a->counters().unreachable_goals, 1);
+  // Without the stuck detector: SOM and EAM on every map, 800 calls in 40 s. With it: so for
+  // stuck_after_s, then one call per stuck_retry_period_s, then one per unreachable_retry_s.
+  const double expected =
+      params_.stuck_after_s * 10.0 * 2.0 +
+      (params_.give_up_s - params_.stuck_after_s) / params_.stuck_retry_period_s +
+      (40.0 - params_.give_up_s) / params_.unreachable_retry_s;
+  EXPECT_LE(requests, expected + 4);
+  // A new goal is planned for at once.
+  std::string why;
+  ASSERT_TRUE(a->setGoal(2, Vector3d(10, 5, 1.2), at(40.0), &why)) << why;
+  a->setAwareness(false, 1, 2, map_seq_);
+  a->onOdometry(rest(Vector3d(0, 0, 1.2)), at(40.01));
+  EXPECT_EQ(a->takeRequests().size(), 1u);
+  EXPECT_EQ(a->phase(), Phase::kTracking);
 }
 
 TEST_F(ArbiterRules, NewGoalTriggersAReplan) {

@@ -125,10 +125,37 @@ TEST(ReplanRules, CollisionsBeyondTheHalfwayReplanWaitForIt) {
 
 TEST(ReplanRules, RetriesWhileAStopBrakesWaitTheirPeriod) {
   const ArbiterParams p = paramsFor(Policy::kMmh);
-  EXPECT_TRUE(retryThrottled(Trigger::kRetry, true, p.stop_retry_period_s / 2, p));
-  EXPECT_FALSE(retryThrottled(Trigger::kRetry, true, p.stop_retry_period_s * 2, p));
-  EXPECT_FALSE(retryThrottled(Trigger::kCollision, true, 0.0, p));
-  EXPECT_FALSE(retryThrottled(Trigger::kRetry, false, 0.0, p));
+  EXPECT_TRUE(retryThrottled(Trigger::kRetry, true, false, p.stop_retry_period_s / 2, p));
+  EXPECT_FALSE(retryThrottled(Trigger::kRetry, true, false, p.stop_retry_period_s * 2, p));
+  EXPECT_FALSE(retryThrottled(Trigger::kCollision, true, false, 0.0, p));
+  EXPECT_FALSE(retryThrottled(Trigger::kRetry, false, false, 0.0, p));
+}
+
+TEST(ReplanRules, RetriesWhileStuckComeAtMostEveryStuckRetryPeriod) {
+  const ArbiterParams p = paramsFor(Policy::kMmh);
+  EXPECT_TRUE(retryThrottled(Trigger::kRetry, false, true, p.stuck_retry_period_s / 2, p));
+  EXPECT_FALSE(retryThrottled(Trigger::kRetry, false, true, p.stuck_retry_period_s * 1.1, p));
+}
+
+TEST(ReplanRules, NoProgressMeansStuckThenUnreachable) {
+  const ArbiterParams p = paramsFor(Policy::kMmh);
+  EXPECT_EQ(stuckResponse(p.stuck_after_s - 0.1, p), StuckResponse::kNone);
+  EXPECT_EQ(stuckResponse(p.stuck_after_s + 0.1, p), StuckResponse::kBackOff);
+  EXPECT_EQ(stuckResponse(p.give_up_s + 0.1, p), StuckResponse::kGiveUp);
+}
+
+TEST(ReplanRules, AnUnreachableGoalIsRetriedOnlyEveryUnreachableRetryPeriod) {
+  const ArbiterParams p = paramsFor(Policy::kMmh);
+  ReplanView v = tracking(1.0);
+  v.phase = Phase::kUnreachable;
+  v.collision_eta_s = 0.5;  // not even a collision starts a round
+  v.retry_mode = Mode::kSom;
+  v.since_last_round_s = p.unreachable_retry_s - 0.1;
+  EXPECT_EQ(nextTrigger(v, p), Trigger::kNone);
+  v.since_last_round_s = p.unreachable_retry_s + 0.1;
+  EXPECT_EQ(nextTrigger(v, p), Trigger::kRetry);
+  v.retry_mode.reset();
+  EXPECT_EQ(nextTrigger(v, p), Trigger::kNone);
 }
 
 TEST(ReplanRules, EamKeepsTheReferenceOnlyWithEnoughOfItLeftAndAClearEnd) {
@@ -185,6 +212,9 @@ TEST(ReplanRules, EveryStopHasItsCondition) {
   EXPECT_FALSE(shouldStop(StopCause::kNoUsableAnswer, failed, p));  // modes left, time left
   failed.fallback_exhausted = true;
   EXPECT_TRUE(shouldStop(StopCause::kNoUsableAnswer, failed, p));
+  failed.stop_can_wait = true;  // a later stop still ends clear: the modes get newer maps
+  EXPECT_FALSE(shouldStop(StopCause::kNoUsableAnswer, failed, p));
+  failed.stop_can_wait = false;
   failed.fallback_exhausted = false;
   failed.by_deadline = true;
   EXPECT_TRUE(shouldStop(StopCause::kNoUsableAnswer, failed, p));
@@ -193,4 +223,7 @@ TEST(ReplanRules, EveryStopHasItsCondition) {
   failed.committed_is_stop = false;
   failed.danger_ahead = false;
   EXPECT_FALSE(shouldStop(StopCause::kNoUsableAnswer, failed, p));
+
+  EXPECT_TRUE(shouldStop(StopCause::kUnreachable, moving, p));
+  EXPECT_FALSE(shouldStop(StopCause::kUnreachable, still, p));
 }

@@ -17,6 +17,7 @@
 #include "mmh/arbiter/fallback_chain.hpp"
 #include "mmh/arbiter/modes.hpp"
 #include "mmh/arbiter/phase.hpp"
+#include "mmh/arbiter/progress_monitor.hpp"
 #include "mmh/arbiter/replan_rules.hpp"
 #include "mmh/common/trajectory.hpp"
 #include "mmh/common/voxel_grid.hpp"
@@ -84,6 +85,8 @@ struct ArbiterCounters {
   int rejected_goals = 0;
   int stale_odometry = 0;            // times ODOMETRY went stale (no planning until it returns)
   int not_committed_stale_odom = 0;  // verified answers dropped because ODOMETRY was stale
+  int unreachable_goals = 0;         // times a goal was given up for lack of progress
+  int back_offs = 0;                 // rounds that backed off to free space while stuck
 };
 
 class Arbiter {
@@ -145,6 +148,7 @@ class Arbiter {
     bool target_is_goal = false;
     std::vector<PlanRequestOut> requests;
     std::vector<ModeAnswer> answers;
+    std::string note;  // why this round has an unusual target (a back-off)
   };
 
   // The policy's inputs now (replan_rules.hpp).
@@ -152,12 +156,19 @@ class Arbiter {
   StopView stopView(int64_t now) const;
 
   void evaluate(int64_t now);
-  void startRound(Trigger trigger, const std::vector<Mode>& modes, int64_t now);
+  void startRound(Trigger trigger, const std::vector<Mode>& modes, int64_t now, bool stuck);
+  // No progress for give_up_s: hold (a stop if moving) and report the goal unreachable.
+  void giveUp(int64_t now);
   void decide(int64_t now, bool by_deadline);
   void commit(const Trajectory& trajectory, int64_t start_utime, Mode mode, bool ends_at_goal);
   // Commits a stopping trajectory; every caller has asked shouldStop() first.
   void commitStop(int64_t now, const std::string& why, Trigger trigger);
   void onStaleOdometry(int64_t now);
+  // After a failed round, and while recovering: commits the stop for the danger ahead once it
+  // cannot wait any longer (shouldStop, StopCause::kNoUsableAnswer).
+  void stopIfNoTimeLeft(int64_t now, bool by_deadline, const std::string& why, Trigger trigger);
+  // A stop begun stop_decision_margin_s later would still end clear of the known obstacles.
+  bool stopCanWait(int64_t now) const;
   // Sets the phase after a round's decision or a stop, unless a new goal came meanwhile (its
   // round comes next whatever the old round decided).
   void enterPhase(Phase phase);
@@ -186,6 +197,9 @@ class Arbiter {
   std::optional<Round> round_;
   std::optional<double> collision_eta_s_;  // a threatening collision awaits its round
   FallbackChain chain_;
+  ProgressMonitor progress_;
+  std::optional<int64_t> last_backoff_utime_;
+  std::string last_failure_notes_;  // of the newest failed round, for the unreachable report
   int64_t last_round_utime_ = 0;
   Eigen::Vector3d last_round_position_ = Eigen::Vector3d::Zero();
   int64_t next_trajectory_id_ = 1;

@@ -70,7 +70,18 @@ struct ArbiterParams {
   // than this is left of it after the new start.
   double reference_min_remaining_s = 0.2;
   double stop_min_speed_mps = 0.05;  // slower than this, a stale input needs no stop
-  double braking_speed_mps = 0.1;    // a committed stop faster than this still brakes
+  // With danger ahead and no usable answer, the stop waits while one begun this much later would
+  // still end clear of the known obstacles (0: stop at once).
+  double stop_decision_margin_s = 0.5;
+  double braking_speed_mps = 0.1;  // a committed stop faster than this still brakes
+  // The stuck detector (progress_monitor.hpp, stuckResponse).
+  double progress_min_step_m = 0.5;     // progress: this much nearer to the goal than ever before
+  double stuck_after_s = 4.0;           // no progress this long: stuck
+  double stuck_retry_period_s = 1.0;    // retries while stuck come at most this often
+  double backoff_min_distance_m = 1.0;  // a back-off target is at least this far away
+  double backoff_clearance_m = 0.15;    // ... and this much clearer than inflation_m
+  double give_up_s = 30.0;              // no progress this long: unreachable, hold
+  double unreachable_retry_s = 5.0;     // while unreachable, one retry this often
   // Answer check (answer_check.hpp).
   double start_position_tolerance_m = 1e-3;  // an answer's start against the requested state
   double start_velocity_tolerance_mps = 1e-2;

@@ -25,6 +25,7 @@ enum class Outcome : int8_t {
   kStopping = 3,
   kReached = 4,
   kRejected = 5,
+  kUnreachable = 6,
 };
 
 const char* toString(Mode mode);

@@ -4,18 +4,18 @@
 // (ReplanView) and its parameters, and changes nothing, so each rule is tested on its own and
 // "when does it replan?" has one place to look.
 //
-// | trigger      | when                                                              | modes asked
-// (mmh)                  |
-// |--------------|-------------------------------------------------------------------|------------------------------------|
-// | initial      | a goal and no committed trajectory                                | FPM if S,
-// else SOM                 | | goal-changed | a new goal while a trajectory is committed | FPM if
-// S, else SOM                 | | collision    | a newly mapped obstacle on the rest of the
-// committed trajectory   | EAM within emergency_horizon_s,    | |              | (far ones are left
-// to the halfway replan)                         | else as initial                    | | retry |
-// the last round failed: the fallback chain's next mode             | SOM, then EAM, then wait for
-// a map | | halfway      | replan_fraction of the committed trajectory flown (lazy policies) | FPM
-// if S, else SOM                 | | fixed        | fixed_replan_distance_m flown (baselines) | the
-// policy's one mode              |
+// Triggers, in the order nextTrigger tries them, and the modes asked for the full method:
+//   goal-changed / initial  a new goal (initial: nothing committed)   FPM if S, else SOM
+//   retry                   the last round failed                     the fallback chain's next
+//                           (also while unreachable, rarely)          mode: SOM, EAM, a new map
+//   collision               a new obstacle on the committed rest       EAM within
+//                           (far ones wait for the halfway replan)     emergency_horizon_s, else
+//                                                                      as initial
+//   halfway                 replan_fraction of the committed flown     FPM if S, else SOM
+//   fixed                   fixed_replan_distance_m flown (baselines)  the policy's one mode
+// While stuck (no progress for stuck_after_s) retries come at most every stuck_retry_period_s and
+// one of them backs off to recently flown free space; after give_up_s the goal is unreachable:
+// the vehicle holds and retries every unreachable_retry_s.
 #pragma once
 
 #include <optional>
@@ -45,6 +45,7 @@ struct ReplanView {
   double flown_since_last_round_m = 0;  // vehicle travel since the last round started
   double to_goal_m = 0;
   std::optional<Mode> retry_mode;  // the fallback chain's next mode, if it has one now
+  double since_last_round_s = 0;   // since the last round started
 };
 
 // Which round (if any) the arbiter starts now.
@@ -60,9 +61,18 @@ bool collisionNeedsRoundNow(double hit_s, double elapsed_s, double duration_s, b
                             const ArbiterParams& params);
 
 // While a stopping trajectory still brakes, retries wait stop_retry_period_s between rounds:
-// plans from hard-braking states rarely fit the limits.
-bool retryThrottled(Trigger trigger, bool braking_in_stop, double since_last_round_s,
+// plans from hard-braking states rarely fit the limits. While stuck, they wait
+// stuck_retry_period_s: the same round on the same map fails the same way.
+bool retryThrottled(Trigger trigger, bool braking_in_stop, bool stuck, double since_last_round_s,
                     const ArbiterParams& params);
+
+// The stuck detector: what no progress toward the goal for no_progress_s calls for.
+enum class StuckResponse {
+  kNone,     // making progress
+  kBackOff,  // stuck: throttle retries, back off to free space once per stuck_after_s
+  kGiveUp,   // unreachable: hold and say why
+};
+StuckResponse stuckResponse(double no_progress_s, const ArbiterParams& params);
 
 // EAM on a collision re-optimises the rest of the committed trajectory (its reference), ending
 // where it ends, when more than reference_min_remaining_s of it is left after the new start
@@ -84,6 +94,7 @@ enum class StopCause {
   kStaleMap,        // LOCAL_MAP went stale: planners would plan on an old map
   kStaleOdometry,   // ODOMETRY went stale: the vehicle's state is unknown
   kNoUsableAnswer,  // a round failed with an obstacle ahead on the committed trajectory
+  kUnreachable,     // no progress toward the goal for give_up_s: hold
 };
 
 struct StopView {
@@ -95,6 +106,9 @@ struct StopView {
   bool danger_ahead = false;        // the committed trajectory collides with the newest map
   bool fallback_exhausted = false;  // every mode of the chain failed since the last commit
   bool by_deadline = false;         // the failed round was closed by its answer deadline
+  // A stop begun stop_decision_margin_s from now would still come to rest clear of the known
+  // obstacles: the danger is not yet close, and new maps may still let a mode answer.
+  bool stop_can_wait = false;
 };
 
 bool shouldStop(StopCause cause, const StopView& view, const ArbiterParams& params);

@@ -1,0 +1,55 @@
+// The stuck detector's memory (progress_monitor.hpp): progress toward the goal and the recently
+// flown free space to back off to.
+#include <gtest/gtest.h>
+
+#include "mmh/arbiter/local_target.hpp"
+#include "mmh/arbiter/progress_monitor.hpp"
+
+using Eigen::Vector3d;
+using mmh::arbiter::ProgressMonitor;
+
+namespace {
+int64_t at(double s) {
+  return static_cast<int64_t>(s * 1e6);
+}
+}  // namespace
+
+TEST(ProgressMonitor, ProgressIsANewBestDistanceByTheMinimumStep) {
+  ProgressMonitor m(0.5, 20.0, 0.2);
+  m.restart(at(0));
+  m.observe(at(0), Vector3d(0, 0, 1), 10.0);
+  m.observe(at(2), Vector3d(0.4, 0, 1), 9.6);  // less than the step: no progress
+  EXPECT_NEAR(m.secondsWithoutProgress(at(3)), 3.0, 1e-9);
+  m.observe(at(4), Vector3d(1, 0, 1), 9.0);  // progress
+  EXPECT_NEAR(m.secondsWithoutProgress(at(5)), 1.0, 1e-9);
+  m.observe(at(6), Vector3d(-5, 0, 1), 15.0);  // away from the goal, and back: not progress
+  m.observe(at(8), Vector3d(1, 0, 1), 9.0);
+  EXPECT_NEAR(m.secondsWithoutProgress(at(8)), 4.0, 1e-9);
+  m.restart(at(9));
+  EXPECT_NEAR(m.secondsWithoutProgress(at(9)), 0.0, 1e-9);
+}
+
+TEST(ProgressMonitor, BacksOffToTheNewestFlownPointFarEnoughAndClear) {
+  mmh::VoxelGrid grid(0.1, Eigen::Vector3i(-50, -50, 0), Eigen::Vector3i(100, 100, 30));
+  for (int64_t i = 0; i < grid.numCells(); ++i) grid.setLinear(i, mmh::Occupancy::kFree);
+  ProgressMonitor m(0.5, 20.0, 0.2);
+  m.restart(at(0));
+  for (int k = 0; k <= 40; ++k) m.observe(at(0.1 * k), Vector3d(0.1 * k, 0, 1.5), 10.0);
+  // Flown from x = 0 to 4; now at 4. An obstacle next to x = 2.4 .. 2.6.
+  for (int64_t i = 0; i < grid.numCells(); ++i) {
+    const Vector3d c = grid.centerOfLocal(grid.localFromLinear(i));
+    if (std::abs(c.x() - 2.5) < 0.1 && std::abs(c.y() - 0.3) < 0.1) {
+      grid.setLinear(i, mmh::Occupancy::kOccupied);
+    }
+  }
+  const auto p = m.backOffPoint(grid, Vector3d(4, 0, 1.5), 1.0, 0.45);
+  ASSERT_TRUE(p.has_value());
+  EXPECT_NEAR(p->x(), 3.0, 1e-9);  // the newest point at least 1 m back
+  // From x = 3.6, the newest point 1 m back lies next to the obstacle: the one before it.
+  const auto q = m.backOffPoint(grid, Vector3d(3.6, 0, 1.5), 1.0, 0.45);
+  ASSERT_TRUE(q.has_value());
+  EXPECT_LT(q->x(), 2.2);
+  EXPECT_TRUE(mmh::arbiter::isClearOf(grid, *q, 0.45));
+  EXPECT_FALSE(mmh::arbiter::isClearOf(grid, *q + Vector3d(0.2, 0, 0), 0.45));  // next sample
+  EXPECT_FALSE(m.backOffPoint(grid, Vector3d(4, 0, 1.5), 10.0, 0.45).has_value());
+}
