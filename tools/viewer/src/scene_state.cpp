@@ -20,6 +20,7 @@ SceneMessages SceneState::onLocalMap(const local_map_t& msg) {
     ++maps_refused_;
     return {};
   }
+  last_map_utime_ = msg.header.utime;
   if (changes.empty()) return {};
   return {{topics::kMapVoxels, msg.header.utime, voxelsJson(changes, voxels_.resolution(), false)}};
 }
@@ -89,7 +90,7 @@ SceneMessages SceneState::snapshot(const std::string& topic) const {
     if (voxels_.numOccupied() == 0) return {};
     VoxelChanges all;
     all.added = voxels_.allOccupied();
-    return {{topic, 0, voxelsJson(all, voxels_.resolution(), true)}};
+    return {{topic, last_map_utime_, voxelsJson(all, voxels_.resolution(), true)}};
   }
   if (topic == topics::kFlownPath) {
     if (path_.samples().empty()) return {};

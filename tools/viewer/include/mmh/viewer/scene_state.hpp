@@ -71,6 +71,7 @@ class SceneState {
   VoxelLayer voxels_;
   FlownPath path_;
   int64_t maps_refused_ = 0;
+  int64_t last_map_utime_ = 0;
   int64_t last_odometry_forwarded_ = 0;
   SceneMessages latest_odometry_, latest_awareness_, latest_mission_;
   std::map<int, SceneMessage> latest_request_by_mode_;
