@@ -5,15 +5,17 @@
 # iterations per mode and cost per iteration, and leaves the LCM log of the flight and a picture.
 #
 #   deploy/demo.sh [--density D] [--seed N] [--sensor depth|lidar] [--out DIR] [--spy]
-#                  [--host-network]
+#                  [--host-network] [--viewer]
 #
 # By default everything runs in a private network namespace (loopback only, no root needed), so
 # no packet — not even a multicast group join — leaves this machine. --host-network runs on the
 # host's network instead (still ttl=0) so that lcm-spy or lcm-logger in another terminal see it;
 # that needs a multicast route (see README). --spy opens the project's lcm-spy alongside.
+# --viewer starts mmh-viewer (docs/viewer.md) and prints its URL; a browser must reach it, so it
+# implies --host-network, and the viewer stays up after the mission until Enter is pressed.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-density=0.1 seed=7 sensor=depth spy=0 host_network=0
+density=0.1 seed=7 sensor=depth spy=0 host_network=0 viewer=0
 out=${MMH_DEMO_OUT:-}
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -23,7 +25,8 @@ while [ $# -gt 0 ]; do
     --out) out=$2; shift 2 ;;
     --spy) spy=1; shift ;;
     --host-network) host_network=1; shift ;;
-    -h|--help) sed -n 2,14p "$0"; exit 0 ;;
+    --viewer) viewer=1; host_network=1; shift ;;
+    -h|--help) sed -n 2,16p "$0"; exit 0 ;;
     *) echo "demo.sh: unknown option $1" >&2; exit 2 ;;
   esac
 done
@@ -35,6 +38,7 @@ if [ "${MMH_IN_NETNS:-0}" != 1 ]; then
   out=$(cd "$out" && pwd)
   args=(--density "$density" --seed "$seed" --sensor "$sensor" --out "$out")
   [ $spy = 1 ] && args+=(--spy)
+  [ $viewer = 1 ] && args+=(--viewer)
   if [ $host_network = 0 ]; then
     exec "$root/tests/integration/netns.sh" "$0" "${args[@]}"
   fi
@@ -52,6 +56,7 @@ cleanup() {
   "$root/deploy/launch/stack.sh" stop --run-dir "$run" >/dev/null 2>&1 || true
   [ -n "${logger_pid:-}" ] && kill "$logger_pid" 2>/dev/null && wait "$logger_pid" 2>/dev/null
   [ -n "${spy_pid:-}" ] && kill "$spy_pid" 2>/dev/null
+  [ $viewer = 1 ] && "$root/deploy/launch/viewer.sh" stop --run-dir "$run" >/dev/null 2>&1
   true
 }
 trap cleanup EXIT
@@ -62,6 +67,10 @@ if [ $spy = 1 ]; then
   "$root/tools/lcm-spy" >"$run/lcm-spy.log" 2>&1 &
   spy_pid=$!
 fi
+if [ $viewer = 1 ]; then
+  "$root/deploy/launch/viewer.sh" start --run-dir "$run" -- --bind 127.0.0.1:8765
+  echo "demo: ground station: open http://127.0.0.1:8765/ in a browser"
+fi
 echo "demo: starting mapping, awareness, FPM, SOM, EAM, arbiter and the simulator (one process each)"
 "$root/deploy/launch/stack.sh" start --run-dir "$run" \
   --sim-args "--world forest --density $density --seed $seed --sensor $sensor --realtime" \
@@ -70,6 +79,9 @@ echo "demo: flying to $goal (watch: $bin/mmh-top in the same network; logs in $r
 status=0
 "$bin/mmh-mission-report" --timeout 120 || status=$?
 sleep 0.5
+if [ $viewer = 1 ] && [ -t 0 ]; then
+  read -r -p "demo: the viewer still shows the flight at http://127.0.0.1:8765/; press Enter to stop " _ || true
+fi
 cleanup
 trap - EXIT
 echo "demo: LCM log of the flight: $log"

@@ -6,6 +6,9 @@
 #   deploy/setup.sh              install what is missing, configure, build
 #   deploy/setup.sh --no-build   install only
 #   BUILD_DIR=build-asan CMAKE_ARGS="-DMMH_SANITIZE=ON" deploy/setup.sh   another build tree
+#
+# It also installs the npm packages of mmh-viewer's page (tools/viewer/web, npm ci from the
+# committed package-lock.json), which the build bundles; nothing is fetched at run time.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build_dir=${BUILD_DIR:-$root/build}
@@ -18,7 +21,12 @@ packages=(
   libgtest-dev libbenchmark-dev nlohmann-json3-dev default-jdk-headless default-jre
   iproute2 util-linux procps python3 python3-matplotlib python3-numpy python3-yaml openssh-client
   xvfb xauth x11-utils imagemagick clang libclang-rt-14-dev
+  libwebsocketpp-dev libasio-dev chromium
 )
+# Node.js and npm for mmh-viewer's page; a Node.js that already brings npm (e.g. a newer nodejs
+# package that provides it) is kept.
+command -v node >/dev/null || packages+=(nodejs)
+command -v npm >/dev/null || packages+=(npm)
 
 missing=()
 for p in "${packages[@]}"; do
@@ -34,6 +42,14 @@ if [ ${#missing[@]} -gt 0 ]; then
   "${sudo_cmd[@]}" apt-get update -qq
   "${sudo_cmd[@]}" apt-get install -y -qq "${missing[@]}" >/tmp/mmh-setup-apt.log 2>&1 || {
     tail -30 /tmp/mmh-setup-apt.log; echo "setup: apt-get install failed (log: /tmp/mmh-setup-apt.log)"; exit 1; }
+fi
+
+web=$root/tools/viewer/web
+if [ ! -f "$web/node_modules/.package-lock.json" ] ||
+   [ "$web/package-lock.json" -nt "$web/node_modules/.package-lock.json" ]; then
+  echo "setup: installing the viewer page's npm packages (npm ci)"
+  (cd "$web" && npm ci --no-audit --no-fund --loglevel=error) >/tmp/mmh-setup-npm.log 2>&1 || {
+    tail -20 /tmp/mmh-setup-npm.log; echo "setup: npm ci failed (log: /tmp/mmh-setup-npm.log)"; exit 1; }
 fi
 
 [ "${1:-}" = "--no-build" ] && exit 0

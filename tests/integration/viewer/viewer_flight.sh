@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# mmh-viewer with a real flight, over udpm:// in a private network namespace (loopback only): a
+# lock-step flight (mmh-stack --log) is played by lcm-logplayer in real time into a running
+# mmh-viewer while (1) the Foxglove protocol's own client (@foxglove/ws-protocol, node) sees the
+# channels with their schemas and receives odometry and trajectories, and (2) headless Chromium
+# opens the page late in the flight (snapshot first, then deltas), waits until it shows live
+# services, a committed trajectory, map voxels and decisions, checks the DOM and takes a
+# screenshot, which must not be blank. Also measures mmh-viewer's CPU share during the playback.
+# Screenshot and CPU report in BUILD/test-output/ (viewer.png, viewer-cpu.txt).
+set -euo pipefail
+build=$1
+root=$(cd "$(dirname "$0")/../../.." && pwd)
+web=$root/tools/viewer/web
+if [ ! -x "$web/node_modules/.bin/esbuild" ] || ! command -v node >/dev/null; then
+  echo "SKIP: the page's npm packages are not installed (deploy/setup.sh)"; exit 77
+fi
+if [ "${MMH_IN_NETNS:-0}" != 1 ]; then exec "$root/tests/integration/netns.sh" bash "$0" "$@"; fi
+out=$(mktemp -d)
+results=$build/test-output
+mkdir -p "$results"
+pids=()
+cleanup() { for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done; wait 2>/dev/null || true; }
+trap 'cleanup; rm -rf "$out"' EXIT
+fail() { echo "FAIL: $*"; tail -20 "$out"/*.log 2>/dev/null; exit 1; }
+port=18765
+
+"$build/bin/mmh-stack" --density 0.1 --seed 7 --log-level error --log "$out/flight.lcm" \
+  > /dev/null || fail "lock-step flight failed"
+
+"$build/bin/mmh-viewer" --bind 127.0.0.1:$port > "$out/viewer.log" 2>&1 &
+viewer=$!
+pids+=("$viewer")
+for _ in $(seq 50); do grep -q serving "$out/viewer.log" && break; sleep 0.1; done
+grep -q "serving http://127.0.0.1:$port/" "$out/viewer.log" || fail "mmh-viewer did not start"
+curl -sf "http://127.0.0.1:$port/" | grep -q "viewer.js" || fail "GET / did not serve the page"
+[ "$(curl -s -o /dev/null -w '%{http_code}' "http://127.0.0.1:$port/../../etc/passwd")" = 404 ] ||
+  fail "a path outside the page was not refused"
+
+(cd "$web/test" && exec node --no-warnings --experimental-websocket foxglove_client_check.mjs \
+  "ws://127.0.0.1:$port/" 25 > "$out/foxglove.log" 2>&1) &
+foxglove=$!
+pids+=("$foxglove")
+sleep 0.5
+
+ticks() { awk '{ print $14 + $15 }' "/proc/$viewer/stat"; }
+cpu_before=$(ticks)
+start_ns=$(date +%s%N)
+lcm-logplayer "$out/flight.lcm" > "$out/logplayer.log" 2>&1 &
+player=$!
+pids+=("$player")
+sleep 2 # the page connects in mid-flight: snapshot first
+(cd "$web/test" && exec node page_check.mjs "http://127.0.0.1:$port/" "$results/viewer.png" 5 25 \
+  > "$out/page.log" 2>&1) &
+page=$!
+pids+=("$page")
+
+wait "$player" || fail "lcm-logplayer failed"
+cpu_after=$(ticks)
+elapsed_ns=$(( $(date +%s%N) - start_ns ))
+wait "$foxglove" || { cat "$out/foxglove.log"; fail "the Foxglove client check failed"; }
+cat "$out/foxglove.log"
+wait "$page" || { cat "$out/page.log"; fail "the page check failed"; }
+cat "$out/page.log"
+
+hz=$(getconf CLK_TCK)
+cpu=$(awk -v t=$((cpu_after - cpu_before)) -v hz="$hz" -v ns="$elapsed_ns" \
+  'BEGIN { printf "%.1f", 100 * t / hz / (ns / 1e9) }')
+maps=$(python3 "$root/tests/integration/deploy/log_channels.py" "$out/flight.lcm" | awk '$1 == "LOCAL_MAP" { print $2 }')
+report="mmh-viewer CPU: $cpu % of one core over $((elapsed_ns / 1000000)) ms of playback ($maps LOCAL_MAP at 15 Hz, 100 Hz ODOMETRY, 2 clients)"
+echo "$report" | tee "$results/viewer-cpu.txt"
+awk -v c="$cpu" 'BEGIN { exit !(c < 25) }' || fail "mmh-viewer used $cpu % of a core"
+
+colors=$(convert "$results/viewer.png" -format %k info:)
+[ "${colors:-0}" -gt 500 ] || fail "the screenshot looks blank ($colors colours)"
+echo "screenshot: $results/viewer.png ($colors colours)"
+kill "$viewer"
+wait "$viewer" || fail "mmh-viewer did not stop cleanly on SIGTERM"
+pids=()
+grep -q "stopped cleanly" "$out/viewer.log" || fail "no clean stop in the viewer's log"
+echo PASS

@@ -1,0 +1,38 @@
+// The server side of the Foxglove WebSocket protocol (foxglove.websocket.v1) as far as the viewer
+// speaks it: serverInfo, advertise and status text frames, binary message-data frames, and the
+// client's subscribe / unsubscribe requests. Only text and bytes here; the socket is elsewhere.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mmh/viewer/channel_schemas.hpp"
+
+namespace mmh::viewer::foxglove {
+
+inline constexpr const char* kSubprotocol = "foxglove.websocket.v1";
+
+std::string serverInfo(const std::string& server_name, const std::string& session_id);
+std::string advertise(const std::vector<ChannelInfo>& channels);
+enum class StatusLevel { kInfo = 0, kWarning = 1, kError = 2 };
+std::string status(StatusLevel level, const std::string& message);
+
+// Opcode 0x01, subscription id (uint32 LE), receive timestamp in ns (uint64 LE), payload.
+std::string messageData(uint32_t subscription_id, uint64_t timestamp_ns,
+                        const std::string& payload);
+
+struct ClientRequest {
+  enum class Kind { kSubscribe, kUnsubscribe, kIgnored, kMalformed };
+  Kind kind = Kind::kIgnored;
+  std::vector<std::pair<uint32_t, uint32_t>> subscriptions;  // (subscription id, channel id)
+  std::vector<uint32_t> unsubscribed;                        // subscription ids
+  std::string error;                                         // kMalformed: why
+};
+
+// A text frame from a client. Operations the viewer does not offer (advertise, setParameters, …)
+// are kIgnored.
+ClientRequest parseClientRequest(const std::string& text);
+
+}  // namespace mmh::viewer::foxglove
