@@ -87,6 +87,28 @@ std::vector<ConfigConstraint> buildConstraints() {
                    << range << " m";
                  return s.str();
                }});
+  c.push_back({{"vehicle.max_vel_mps", "vehicle.max_acc_mps2", "arbiter.replan_lead_s",
+                "arbiter.stale_map_s", "awareness.sensor_range_m"},
+               "vehicle.max_vel_mps^2 / (2 vehicle.max_acc_mps2) + vehicle.max_vel_mps x "
+               "(arbiter.replan_lead_s + arbiter.stale_map_s) <= awareness.sensor_range_m",
+               "at full speed the vehicle must be able to stop within what its sensor sees, after "
+               "the reaction time (replan lead) and the longest map delay it flies on",
+               [](const Config& config) -> std::string {
+                 const double v = config.getDouble("vehicle.max_vel_mps");
+                 const double a = config.getDouble("vehicle.max_acc_mps2");
+                 const double latency = config.getDouble("arbiter.replan_lead_s") +
+                                        config.getDouble("arbiter.stale_map_s");
+                 const double range = config.getDouble("awareness.sensor_range_m");
+                 const double needed = v * v / (2.0 * a) + v * latency;
+                 if (needed <= range + 1e-9) return "";
+                 std::ostringstream s;
+                 s << "stopping from 'vehicle.max_vel_mps' = " << v
+                   << " m/s at 'vehicle.max_acc_mps2' = " << a << " m/s^2 after "
+                   << "'arbiter.replan_lead_s' + 'arbiter.stale_map_s' = " << latency << " s takes "
+                   << needed << " m, beyond 'awareness.sensor_range_m' = " << range
+                   << " m: lower the speed, or use a sensor of longer range";
+                 return s.str();
+               }});
   const std::string escape_why =
       "a planner's way out of the margin must not end inside the arbiter's check margin";
   c.push_back(

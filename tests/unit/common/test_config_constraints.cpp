@@ -56,8 +56,16 @@ TEST(ConfigConstraints, GeofenceIsANonEmptyBox) {
 }
 
 TEST(ConfigConstraints, MapWindowCoversThePlanningRange) {
-  expectNames(violationWith("vehicle.max_vel_mps", "4.0"), "map.window_size_m",
+  expectNames(violationWith("arbiter.planning_horizon_s", "6.0"), "map.window_size_m",
               "arbiter.planning_horizon_s");
+}
+
+TEST(ConfigConstraints, FullSpeedStopsWithinTheSensorRange) {
+  // 3 m/s at 2 m/s^2: 2.25 m + 3 x 0.55 s = 3.9 m <= 4.5 m. At 1 m/s^2: 6.15 m.
+  expectNames(violationWith("vehicle.max_acc_mps2", "1.0"), "vehicle.max_acc_mps2",
+              "awareness.sensor_range_m");
+  expectNames(violationWith("awareness.sensor_range_m", "3.5"), "vehicle.max_vel_mps",
+              "awareness.sensor_range_m");
 }
 
 TEST(ConfigConstraints, LidarElevationsAndOccupancyThreshold) {
