@@ -6,9 +6,9 @@
 
 #include "mmh/common/collision_check.hpp"
 #include "mmh/common/narrow_space.hpp"
+#include "mmh/common/trajectory_limits.hpp"
 #include "mmh/eam/bspline_optimizer.hpp"
 #include "mmh/eam/collision_pairs.hpp"
-#include "mmh/eam/cubic_roots.hpp"
 #include "mmh/eam/initial_guess.hpp"
 #include "mmh/eam/verification.hpp"
 
@@ -325,14 +325,7 @@ void bsplineMaxima(const UniformBspline& spline, double* max_speed, double* max_
     const Eigen::Vector3d b1 = (q.col(i) - 2.0 * q.col(i + 1) + q.col(i + 2)) / (dt * dt);
     const Eigen::Vector3d b2 =
         (-q.col(i) + 3.0 * q.col(i + 1) - 3.0 * q.col(i + 2) + q.col(i + 3)) / (2.0 * dt * dt * dt);
-    auto speed2 = [&](double t) { return (b0 + t * (b1 + t * b2)).squaredNorm(); };
-    v2 = std::max({v2, speed2(0.0), speed2(dt)});
-    double roots[3];
-    const int n = cubicRoots(2.0 * b2.dot(b2), 3.0 * b1.dot(b2), b1.dot(b1) + 2.0 * b0.dot(b2),
-                             b0.dot(b1), roots);
-    for (int k = 0; k < n; ++k) {
-      if (roots[k] > 0.0 && roots[k] < dt) v2 = std::max(v2, speed2(roots[k]));
-    }
+    v2 = maxSquaredQuadraticNorm(b0, b1, b2, dt, v2);
   }
   *max_speed = std::sqrt(v2);
   *max_acc = std::sqrt(a2) / (dt * dt);

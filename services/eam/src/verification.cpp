@@ -1,7 +1,7 @@
 #include "mmh/eam/verification.hpp"
 
 #include "mmh/common/collision_check.hpp"
-#include "mmh/eam/cubic_roots.hpp"
+#include "mmh/common/trajectory_limits.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -16,36 +16,6 @@ std::string fmt(double v) {
   s.precision(4);
   s << v;
   return s.str();
-}
-
-// Exact maxima of |v| and |a|. Pieces of degree <= 3 (what EAM produces) in closed form: the
-// velocity is quadratic, so |v|^2 is a quartic whose stationary points solve a cubic, and the
-// acceleration is linear, so it peaks at an end. Other pieces: Trajectory's general routine.
-void exactMaxima(const Trajectory& traj, double* max_speed, double* max_acc) {
-  for (const Piece& piece : traj.pieces()) {
-    if (!piece.coeffs.rightCols(kMaxPolyOrder - 4).isZero(0.0)) {
-      *max_speed = traj.maxSpeed();
-      *max_acc = traj.maxAcceleration();
-      return;
-    }
-  }
-  double v2 = 0.0, a2 = 0.0;
-  for (const Piece& piece : traj.pieces()) {
-    const double T = piece.duration;
-    const Eigen::Vector3d b0 = piece.coeffs.col(1), b1 = 2.0 * piece.coeffs.col(2),
-                          b2 = 3.0 * piece.coeffs.col(3);
-    auto speed2 = [&](double t) { return (b0 + t * (b1 + t * b2)).squaredNorm(); };
-    v2 = std::max({v2, speed2(0.0), speed2(T)});
-    double roots[3];
-    const int n = cubicRoots(2.0 * b2.dot(b2), 3.0 * b1.dot(b2), b1.dot(b1) + 2.0 * b0.dot(b2),
-                             b0.dot(b1), roots);
-    for (int i = 0; i < n; ++i) {
-      if (roots[i] > 0.0 && roots[i] < T) v2 = std::max(v2, speed2(roots[i]));
-    }
-    a2 = std::max({a2, b1.squaredNorm(), (b1 + 2.0 * T * b2).squaredNorm()});
-  }
-  *max_speed = std::sqrt(v2);
-  *max_acc = std::sqrt(a2);
 }
 
 }  // namespace
@@ -71,7 +41,10 @@ Verification verifyTrajectory(const Trajectory& traj, const VoxelGrid& grid,
     r.why = "does not end at the target at rest";
     return r;
   }
-  exactMaxima(traj, &r.max_speed, &r.max_acc);
+  // Exact maxima: closed form for EAM's cubic pieces (trajectory_limits.hpp).
+  const KinematicMaxima maxima = trajectoryMaxima(traj, MaximaMethod::kCubicClosedForm);
+  r.max_speed = maxima.max_speed;
+  r.max_acc = maxima.max_acc;
 
   // Dense samples, piece by piece, no two further apart than a quarter voxel.
   const double step_m = 0.25 * grid.resolution();

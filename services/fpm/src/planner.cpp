@@ -3,12 +3,17 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mmh/common/trajectory_limits.hpp"
 #include "mmh/fpm/initial_guess.hpp"
-#include "mmh/fpm/limit_check.hpp"
 #include "mmh/plan_result_t.hpp"
 
 namespace mmh::fpm {
 namespace {
+
+// FPM checks its limits with the Bernstein bound (never below the true maximum).
+KinematicMaxima measureLimits(const Trajectory& traj) {
+  return trajectoryMaxima(traj, MaximaMethod::kBernsteinBound);
+}
 
 constexpr double kSamePointM = 1e-3;  // start and target closer than this are "the same"
 
@@ -133,17 +138,17 @@ bool Planner::planWithMargin(const Request& request, double margin_ratio, Result
   settings.max_evaluations = params_.max_evaluations * (request.waypoints.empty() ? 1 : 5);
   out.evaluations += optimizer.optimize(settings);
 
-  // Exact check of the limits over the whole trajectory (Bernstein bounds, limit_check.hpp).
+  // Exact check of the limits over the whole trajectory (Bernstein bounds, mmh/common/trajectory_limits.hpp).
   // The penalties only see samples; if the result breaks a limit between them, re-optimise once
   // with the penalty limits lowered by the overshoot and denser samples. Of the candidates that
   // pass - including the initial guess, an S-curve inside the limits by construction when the
   // start moves along the path - the one with the lowest cost wins.
   Trajectory traj = optimizer.trajectory();
-  LimitReport limits = measureLimits(traj);
+  KinematicMaxima limits = measureLimits(traj);
   // On a line the guess is already within ~0.1 % of the optimum: take it rather than
   // re-optimising.
   if (!limits.within(vmax, amax) && on_line) {
-    const LimitReport initial_limits = measureLimits(initial);
+    const KinematicMaxima initial_limits = measureLimits(initial);
     if (initial_limits.within(vmax, amax)) {
       ++out.repairs;
       optimizer.setup(guess.knots, guess.fixed, guess.durations);
@@ -159,7 +164,7 @@ bool Planner::planWithMargin(const Request& request, double margin_ratio, Result
     out.evaluations += optimizer.optimize(settings);
     traj = optimizer.trajectory();
     limits = measureLimits(traj);
-    const LimitReport initial_limits = measureLimits(initial);
+    const KinematicMaxima initial_limits = measureLimits(initial);
     const auto cost = [&](const Trajectory& t) {
       return t.jerkEnergy() + params_.time_weight * t.duration();
     };
