@@ -88,7 +88,7 @@ void BM_Som(benchmark::State& state) {
         polys.push_back(out.corridor.polytopes.size());
       } else if (verbose) {
         std::fprintf(stderr, "scenario %zu (map %llu): %s: %s\n", i,
-                     static_cast<unsigned long long>(s.map_seed), mmh::som::toString(out.status),
+                     static_cast<unsigned long long>(s.map_seed), mmh::toString(out.status),
                      out.detail.c_str());
       }
     }

@@ -5,7 +5,6 @@
 
 #include "mmh/common/trajectory_limits.hpp"
 #include "mmh/fpm/initial_guess.hpp"
-#include "mmh/plan_result_t.hpp"
 
 namespace mmh::fpm {
 namespace {
@@ -29,43 +28,43 @@ bool inside(const Eigen::Vector3d& p, const Params& params) {
 }  // namespace
 
 bool Planner::validate(const Request& r, Result& out) const {
-  auto fail = [&](int16_t reason, const std::string& detail) {
+  auto fail = [&](PlanStatus status, const std::string& detail) {
     out.ok = false;
-    out.reason = reason;
+    out.status = status;
     out.detail = detail;
     return false;
   };
   bool all_finite = finite(r.start.position) && finite(r.start.velocity) &&
                     finite(r.start.acceleration) && finite(r.target);
   for (const Eigen::Vector3d& w : r.waypoints) all_finite = all_finite && finite(w);
-  if (!all_finite) return fail(plan_result_t::REASON_BAD_INPUT, "request has NaN or Inf values");
+  if (!all_finite) return fail(PlanStatus::kBadInput, "request has NaN or Inf values");
   if (!inside(r.target, params_))
-    return fail(plan_result_t::REASON_TARGET_OUT_OF_BOUNDS, "target is outside the geofence");
+    return fail(PlanStatus::kTargetOutOfBounds, "target is outside the geofence");
   for (const Eigen::Vector3d& w : r.waypoints)
     if (!inside(w, params_))
-      return fail(plan_result_t::REASON_TARGET_OUT_OF_BOUNDS, "a waypoint is outside the geofence");
+      return fail(PlanStatus::kTargetOutOfBounds, "a waypoint is outside the geofence");
   const double v0 = r.start.velocity.norm(), a0 = r.start.acceleration.norm();
   const double vmax = params_.max_vel_mps, amax = params_.max_acc_mps2;
   if (v0 > vmax * (1.0 + 1e-9) || a0 > amax * (1.0 + 1e-9))
-    return fail(plan_result_t::REASON_INFEASIBLE_START,
+    return fail(PlanStatus::kInfeasibleStart,
                 "start speed " + std::to_string(v0) + " m/s or acceleration " + std::to_string(a0) +
                     " m/s^2 is above the limits");
   // At the speed limit and still speeding up: the limit breaks at once, whatever follows.
   if (v0 > vmax * (1.0 - 1e-9) && r.start.velocity.dot(r.start.acceleration) > 1e-9)
-    return fail(plan_result_t::REASON_INFEASIBLE_START,
+    return fail(PlanStatus::kInfeasibleStart,
                 "start is at the speed limit and still accelerating");
   Eigen::Vector3d prev = r.start.position;
   for (const Eigen::Vector3d& w : r.waypoints) {
     if ((w - prev).norm() < kSamePointM)
-      return fail(plan_result_t::REASON_BAD_INPUT, "two consecutive waypoints coincide");
+      return fail(PlanStatus::kBadInput, "two consecutive waypoints coincide");
     prev = w;
   }
   if ((r.target - prev).norm() < kSamePointM) {
     if (r.waypoints.empty() && v0 < 1e-6 && a0 < 1e-6)
-      return fail(plan_result_t::REASON_START_EQUALS_TARGET,
+      return fail(PlanStatus::kStartEqualsTarget,
                   "start equals target and is at rest: nothing to plan (hold position)");
     if (!r.waypoints.empty())
-      return fail(plan_result_t::REASON_BAD_INPUT, "the last waypoint equals the target");
+      return fail(PlanStatus::kBadInput, "the last waypoint equals the target");
     // Moving through the target: plan the way back to it (the profile turns around).
   }
   return true;
@@ -84,7 +83,7 @@ Result Planner::plan(const Request& request) const {
   }
   out.ok = false;
   out.trajectory = Trajectory();
-  out.reason = plan_result_t::REASON_VERIFY;
+  out.status = PlanStatus::kVerify;
   out.detail = "limits still broken with the widest margin: max speed " +
                std::to_string(out.max_speed) + " m/s, max acceleration " +
                std::to_string(out.max_acc) + " m/s^2";
@@ -179,7 +178,7 @@ bool Planner::planWithMargin(const Request& request, double margin_ratio, Result
   out.max_acc = limits.max_acc;
   if (!traj.isFinite() || !limits.within(vmax, amax)) return false;
   out.ok = true;
-  out.reason = plan_result_t::REASON_NONE;
+  out.status = PlanStatus::kOk;
   out.detail.clear();
   out.trajectory = std::move(traj);
   settings.v_limit = v_limit;

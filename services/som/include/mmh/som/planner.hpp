@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "mmh/common/grid_astar.hpp"
+#include "mmh/common/plan_status.hpp"
 #include "mmh/common/trajectory.hpp"
 #include "mmh/common/voxel_grid.hpp"
 #include "mmh/som/corridor.hpp"
@@ -17,21 +18,6 @@
 
 namespace mmh::som {
 
-enum class PlanStatus {
-  kOk,
-  kBadInput,           // NaN/Inf, start outside the window or the geofence
-  kNoMap,              // empty grid
-  kStartInObstacle,    // start in an occupied voxel
-  kTargetInObstacle,   // target inside the inflated obstacles
-  kTargetOutOfBounds,  // target outside the geofence or the map window
-  kInfeasibleStart,    // start speed or acceleration above the limits
-  kStartEqualsTarget,  // at rest on the target already: nothing to plan
-  kNoPath,             // A* found no path (or ran out of its node budget)
-  kCorridor,           // the safe flight corridor could not be built
-  kOptimizer,          // the optimiser produced no usable result
-  kVerify,             // the result failed the independent verification
-};
-const char* toString(PlanStatus status);
 
 // Time of one step of a plan() call, microseconds: wall clock, and CPU time of the calling
 // thread (what the step costs when the machine is shared).
