@@ -8,16 +8,6 @@
 #include "mmh/common/trajectory_limits.hpp"
 
 namespace mmh {
-namespace {
-
-// Falling factorial k (k-1) ... (k-order+1).
-double fallingFactorial(int k, int order) {
-  double r = 1.0;
-  for (int i = 0; i < order; ++i) r *= (k - i);
-  return r;
-}
-
-}  // namespace
 
 Eigen::Vector3d Piece::derivative(int order, double t) const {
   Eigen::Vector3d r = Eigen::Vector3d::Zero();
@@ -112,7 +102,8 @@ double Trajectory::arcLength(double t0, double t1) const {
 
 double Trajectory::jerkEnergy() const {
   double e = 0.0;
-  for (const Piece& piece : pieces_) e += polyIntegral(squaredDerivativeNormPoly(piece, 3), piece.duration);
+  for (const Piece& piece : pieces_)
+    e += polyIntegral(squaredDerivativeNormPoly(piece, 3), piece.duration);
   return e;
 }
 

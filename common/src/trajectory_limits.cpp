@@ -5,14 +5,8 @@
 #include <cmath>
 
 namespace mmh {
-namespace {
 
-// Falling factorial k (k-1) ... (k-order+1).
-double fallingFactorial(int k, int order) {
-  double r = 1.0;
-  for (int i = 0; i < order; ++i) r *= (k - i);
-  return r;
-}
+namespace {
 
 PolyCoeffs axisPoly(const PieceCoeffs& c, int axis, int order) {
   PolyCoeffs p = PolyCoeffs::Zero(std::max(1, kMaxPolyOrder - order));
@@ -36,7 +30,8 @@ double maxDerivativeNorm(const Trajectory& traj, int order, double* at_time) {
   double best = 0.0, best_t = 0.0, t0 = 0.0;
   for (const Piece& piece : traj.pieces()) {
     double arg = 0.0;
-    double v = polyMaxOnInterval(squaredDerivativeNormPoly(piece, order), 0.0, piece.duration, &arg);
+    double v =
+        polyMaxOnInterval(squaredDerivativeNormPoly(piece, order), 0.0, piece.duration, &arg);
     if (v > best) {
       best = v;
       best_t = t0 + arg;
@@ -207,7 +202,6 @@ int cubicRoots(double a, double b, double c, double d, double roots[3]) {
   }
   return n;
 }
-
 
 double maxSquaredQuadraticNorm(const Eigen::Vector3d& b0, const Eigen::Vector3d& b1,
                                const Eigen::Vector3d& b2, double T, double best) {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "mmh/common/trajectory_limits.hpp"
+#include "mmh/common/trajectory_verifier.hpp"
 #include "mmh/fpm/initial_guess.hpp"
 
 namespace mmh::fpm {
@@ -46,13 +47,12 @@ bool Planner::validate(const Request& r, Result& out) const {
   const double v0 = r.start.velocity.norm(), a0 = r.start.acceleration.norm();
   const double vmax = params_.max_vel_mps, amax = params_.max_acc_mps2;
   if (v0 > vmax * (1.0 + 1e-9) || a0 > amax * (1.0 + 1e-9))
-    return fail(PlanStatus::kInfeasibleStart,
-                "start speed " + std::to_string(v0) + " m/s or acceleration " + std::to_string(a0) +
-                    " m/s^2 is above the limits");
+    return fail(PlanStatus::kInfeasibleStart, "start speed " + std::to_string(v0) +
+                                                  " m/s or acceleration " + std::to_string(a0) +
+                                                  " m/s^2 is above the limits");
   // At the speed limit and still speeding up: the limit breaks at once, whatever follows.
   if (v0 > vmax * (1.0 - 1e-9) && r.start.velocity.dot(r.start.acceleration) > 1e-9)
-    return fail(PlanStatus::kInfeasibleStart,
-                "start is at the speed limit and still accelerating");
+    return fail(PlanStatus::kInfeasibleStart, "start is at the speed limit and still accelerating");
   Eigen::Vector3d prev = r.start.position;
   for (const Eigen::Vector3d& w : r.waypoints) {
     if ((w - prev).norm() < kSamePointM)
@@ -137,11 +137,11 @@ bool Planner::planWithMargin(const Request& request, double margin_ratio, Result
   settings.max_evaluations = params_.max_evaluations * (request.waypoints.empty() ? 1 : 5);
   out.evaluations += optimizer.optimize(settings);
 
-  // Exact check of the limits over the whole trajectory (Bernstein bounds, mmh/common/trajectory_limits.hpp).
-  // The penalties only see samples; if the result breaks a limit between them, re-optimise once
-  // with the penalty limits lowered by the overshoot and denser samples. Of the candidates that
-  // pass - including the initial guess, an S-curve inside the limits by construction when the
-  // start moves along the path - the one with the lowest cost wins.
+  // Exact check of the limits over the whole trajectory (Bernstein bounds,
+  // mmh/common/trajectory_limits.hpp). The penalties only see samples; if the result breaks a limit
+  // between them, re-optimise once with the penalty limits lowered by the overshoot and denser
+  // samples. Of the candidates that pass - including the initial guess, an S-curve inside the
+  // limits by construction when the start moves along the path - the one with the lowest cost wins.
   Trajectory traj = optimizer.trajectory();
   KinematicMaxima limits = measureLimits(traj);
   // On a line the guess is already within ~0.1 % of the optimum: take it rather than
@@ -176,7 +176,14 @@ bool Planner::planWithMargin(const Request& request, double margin_ratio, Result
   }
   out.max_speed = limits.max_speed;
   out.max_acc = limits.max_acc;
-  if (!traj.isFinite() || !limits.within(vmax, amax)) return false;
+  // Accepted by the shared verifier: finite pieces, exact limits (Bernstein bound) within 1e-9.
+  VerifierOptions check;
+  check.check_limits = true;
+  check.max_vel_mps = vmax;
+  check.max_acc_mps2 = amax;
+  check.limit_absolute_tol = 1e-9;
+  check.maxima = MaximaMethod::kBernsteinBound;
+  if (!verifyTrajectory(traj, check).ok) return false;
   out.ok = true;
   out.status = PlanStatus::kOk;
   out.detail.clear();

@@ -45,6 +45,13 @@ double maxDerivativeNorm(const Trajectory& traj, int order, double* at_time = nu
 // above it. *at_time receives where the largest sampled value lies (local time).
 double bernsteinMaxDerivativeNorm(const Piece& piece, int order, double* at_time = nullptr);
 
+// Falling factorial k (k-1) ... (k-order+1): the factor of c_k t^k in its derivative `order`.
+inline double fallingFactorial(int k, int order) {
+  double r = 1.0;
+  for (int i = 0; i < order; ++i) r *= (k - i);
+  return r;
+}
+
 // |d^order p / dt^order|^2 of a piece as a polynomial in local time.
 PolyCoeffs squaredDerivativeNormPoly(const Piece& piece, int order);
 
