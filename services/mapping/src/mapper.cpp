@@ -57,7 +57,7 @@ Mapper::Result Mapper::processScan(const ScanInput& scan, int64_t utime) {
   result.insert = map_.insert(filtered_);
   const int64_t period_us = std::llround(params_.keyframe_period_s * 1e6);
   const bool keyframe = keyframe_requested_ || utime - last_keyframe_utime_ >= period_us ||
-                    utime < last_keyframe_utime_;
+                        utime < last_keyframe_utime_;
   ++map_seq_;
   if (keyframe) {
     map_.clearChanges();

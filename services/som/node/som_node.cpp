@@ -52,9 +52,9 @@ void SomNode::onPlanRequest(const plan_request_t& req) {
                 last_.optimizer_evaluations, t.verify.wall_us * 1e-3);
   result.status = last_.ok() ? plan_result_t::STATUS_OK : plan_result_t::STATUS_FAILED;
   result.reason = toWireReason(last_.status);
-  result.detail = last_.ok() ? std::string(split)
-                             : std::string(toString(last_.status)) + ": " + last_.detail +
-                                   " [" + split + "]";
+  result.detail =
+      last_.ok() ? std::string(split)
+                 : std::string(toString(last_.status)) + ": " + last_.detail + " [" + split + "]";
   result.cost_total = last_.cost_total;
   result.cost_control = last_.cost_control;
   result.cost_time = last_.cost_time;

@@ -9,8 +9,8 @@
 
 namespace {
 
-using mmh::PlanStatus;
 using mmh::plan_result_t;
+using mmh::PlanStatus;
 
 TEST(PlanStatus, EveryStatusHasItsWireReason) {
   const std::pair<PlanStatus, int16_t> table[] = {

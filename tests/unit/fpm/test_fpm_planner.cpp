@@ -80,7 +80,7 @@ TEST(FpmPlanner, FortyMetresRestToRestIsCloseToTheTimeBound) {
                          Vector3d(19.95, 0, 1.2));
   const auto res = planner.plan(r);
   verify(r, res, "40 m");
-  const double bound = 39.9 / 3.0 + 1.5;               // 14.80 s (BENCHMARK.md)
+  const double bound = 39.9 / 3.0 + 1.5;               // 14.80 s (docs/benchmark.md)
   EXPECT_LT(res.trajectory.duration(), 1.10 * bound);  // the requirement
   EXPECT_LT(res.trajectory.duration(), 1.02 * bound);  // what this planner achieves
   EXPECT_GT(res.trajectory.duration(), bound);

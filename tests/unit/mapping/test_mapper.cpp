@@ -4,8 +4,8 @@
 
 #include <algorithm>
 
-#include "mmh/common/local_map_codec.hpp"
 #include "mapping_node.hpp"
+#include "mmh/common/local_map_codec.hpp"
 #include "mmh/mapping/mapper.hpp"
 #include "scan_helpers.hpp"
 

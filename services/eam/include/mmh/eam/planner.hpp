@@ -27,7 +27,6 @@ struct PlanRequest {
   Trajectory reference;
 };
 
-
 struct PlanStats {
   int rounds = 0;       // optimisations run
   int refines = 0;      // time re-allocations

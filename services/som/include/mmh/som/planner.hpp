@@ -18,7 +18,6 @@
 
 namespace mmh::som {
 
-
 // Time of one step of a plan() call, microseconds: wall clock, and CPU time of the calling
 // thread (what the step costs when the machine is shared).
 struct StepTime {
@@ -66,7 +65,7 @@ class Planner {
 };
 
 // Lower bound on the duration of a rest-to-rest flight along a path of this length under the
-// limits (BENCHMARK.md): L / v + v / a, or 2 sqrt(L / a) when v_max is not reached.
+// limits (docs/benchmark.md): L / v + v / a, or 2 sqrt(L / a) when v_max is not reached.
 double restToRestTimeBound(double length_m, double max_vel_mps, double max_acc_mps2);
 
 }  // namespace mmh::som
