@@ -10,7 +10,7 @@
 # By default everything runs in a private network namespace (loopback only, no root needed), so
 # no packet — not even a multicast group join — leaves this machine. --host-network runs on the
 # host's network instead (still ttl=0) so that lcm-spy or lcm-logger in another terminal see it;
-# that needs a multicast route (see README). --spy opens the project's lcm-spy alongside.
+# that needs a multicast route (see docs/operations.md#several-machines). --spy opens the project's lcm-spy alongside.
 # --viewer starts mmh-viewer (docs/viewer.md) and prints its URL; a browser must reach it, so it
 # implies --host-network, and the viewer stays up after the mission until Enter is pressed.
 set -euo pipefail

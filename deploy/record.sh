@@ -6,7 +6,7 @@
 # FILE defaults to logs/mmh-<date>.lcm; lcm-logger's -i always appends .00, .01, ... (the first
 # free one), so an existing log is never overwritten and the log is FILE.00 the first time
 # (Debian's --increment spelling is broken in LCM 1.3.1, -i works). The real name is printed.
-# Stop with Ctrl-C (or SIGTERM); replay with lcm-logplayer FILE.00 (see the README).
+# Stop with Ctrl-C (or SIGTERM); replay with lcm-logplayer FILE.00 (see docs/operations.md#record-and-replay).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 file=""

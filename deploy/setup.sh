@@ -20,7 +20,7 @@ packages=(
   libeigen3-dev liboctomap-dev libpcl-dev libnlopt-cxx-dev libyaml-cpp-dev
   libgtest-dev libbenchmark-dev nlohmann-json3-dev default-jdk-headless default-jre
   iproute2 util-linux procps python3 python3-matplotlib python3-numpy python3-yaml openssh-client
-  xvfb xauth x11-utils imagemagick clang libclang-rt-14-dev
+  xvfb xauth x11-utils imagemagick clang clang-format libclang-rt-14-dev
   libwebsocketpp-dev libasio-dev chromium
 )
 # Node.js and npm for mmh-viewer's page; a Node.js that already brings npm (e.g. a newer nodejs

@@ -60,7 +60,8 @@ std::unique_ptr<lcm::LCM> openLcm(const std::string& url) {
         "LCM is not usable with URL " + shown +
         ". For udpm:// this usually means there is no multicast route: on a single machine run\n"
         "  sudo ip route add 224.0.0.0/4 dev lo\n"
-        "(or on the network interface that joins your machines, see README 'Several machines'),"
+        "(or on the network interface that joins your machines, see "
+        "docs/operations.md#several-machines),"
         " or pick another URL with --lcm-url / LCM_DEFAULT_URL.");
   }
   return lcm;

@@ -5,50 +5,9 @@
 #include <cmath>
 
 #include "mmh/common/polynomial.hpp"
+#include "mmh/common/trajectory_limits.hpp"
 
 namespace mmh {
-namespace {
-
-// Falling factorial k (k-1) ... (k-order+1).
-double fallingFactorial(int k, int order) {
-  double r = 1.0;
-  for (int i = 0; i < order; ++i) r *= (k - i);
-  return r;
-}
-
-PolyCoeffs axisPoly(const PieceCoeffs& c, int axis, int order) {
-  PolyCoeffs p = PolyCoeffs::Zero(std::max(1, kMaxPolyOrder - order));
-  for (int k = order; k < kMaxPolyOrder; ++k)
-    p[k - order] = c(axis, k) * fallingFactorial(k, order);
-  return p;
-}
-
-// |d^order p / dt^order|^2 as a polynomial in local time.
-PolyCoeffs squaredNormPoly(const Piece& piece, int order) {
-  PolyCoeffs sum = PolyCoeffs::Zero(1);
-  for (int axis = 0; axis < 3; ++axis) {
-    PolyCoeffs p = axisPoly(piece.coeffs, axis, order);
-    sum = polyAdd(sum, polyMultiply(p, p));
-  }
-  return sum;
-}
-
-double maxNorm(const std::vector<Piece>& pieces, int order, double* at_time) {
-  double best = 0.0, best_t = 0.0, t0 = 0.0;
-  for (const Piece& piece : pieces) {
-    double arg = 0.0;
-    double v = polyMaxOnInterval(squaredNormPoly(piece, order), 0.0, piece.duration, &arg);
-    if (v > best) {
-      best = v;
-      best_t = t0 + arg;
-    }
-    t0 += piece.duration;
-  }
-  if (at_time) *at_time = best_t;
-  return std::sqrt(std::max(0.0, best));
-}
-
-}  // namespace
 
 Eigen::Vector3d Piece::derivative(int order, double t) const {
   Eigen::Vector3d r = Eigen::Vector3d::Zero();
@@ -143,18 +102,19 @@ double Trajectory::arcLength(double t0, double t1) const {
 
 double Trajectory::jerkEnergy() const {
   double e = 0.0;
-  for (const Piece& piece : pieces_) e += polyIntegral(squaredNormPoly(piece, 3), piece.duration);
+  for (const Piece& piece : pieces_)
+    e += polyIntegral(squaredDerivativeNormPoly(piece, 3), piece.duration);
   return e;
 }
 
 double Trajectory::maxSpeed(double* at_time) const {
-  return maxNorm(pieces_, 1, at_time);
+  return maxDerivativeNorm(*this, 1, at_time);
 }
 double Trajectory::maxAcceleration(double* at_time) const {
-  return maxNorm(pieces_, 2, at_time);
+  return maxDerivativeNorm(*this, 2, at_time);
 }
 double Trajectory::maxJerk(double* at_time) const {
-  return maxNorm(pieces_, 3, at_time);
+  return maxDerivativeNorm(*this, 3, at_time);
 }
 
 Trajectory Trajectory::tail(double t0) const {

@@ -1,5 +1,6 @@
 // Writes the seed corpus of the fuzz targets: one or two valid encoded messages of every type (and
-// an invalid one for odometry), as tests/fuzz/corpus/<type>/<name>. Run by hand when a type changes:
+// an invalid one for odometry), as tests/fuzz/corpus/<type>/<name>. Run by hand when a type
+// changes:
 //   build-fuzz/bin/mmh-fuzz-seeds tests/fuzz/corpus
 #include <cmath>
 #include <cstdio>

@@ -111,7 +111,7 @@ Stat statOf(const std::vector<double>& values) {
 }
 
 PaperFigures paperFigures(double d) {
-  // BENCHMARK.md (paper Tables I and II).
+  // docs/benchmark.md (paper Tables I and II).
   if (std::abs(d - 0.0) < 1e-9) return {16.52, 15.39, 39.89, 15.56, 9.0, 0.1};
   if (std::abs(d - 0.05) < 1e-9) return {17.04, 17.04, 40.20, 43.93, 12.7, 0.3};
   if (std::abs(d - 0.1) < 1e-9) return {17.89, 17.89, 40.84, 80.91, 17.5, 0.7};
@@ -230,7 +230,8 @@ std::string summaryMarkdown(const std::vector<FlightResult>& results, const std:
          << " | | | | " << fmt(p.cost_ms_mmh, 1) << " | | |\n";
     }
   }
-  md << "\nPaper figures from BENCHMARK.md (paper's machine: i9-13980HX; ours: 2 shared cores).\n";
+  md << "\nPaper figures from docs/benchmark.md (paper's machine: i9-13980HX; ours: 2 shared "
+        "cores).\n";
   md << "\n" << stopCensusMarkdown(results);
   return md.str();
 }

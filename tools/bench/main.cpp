@@ -1,4 +1,4 @@
-// mmh-bench: the paper's experiment (BENCHMARK.md) in lock-step, every method on the same
+// mmh-bench: the paper's experiment (docs/benchmark.md) in lock-step, every method on the same
 // worlds, start, goal and sensor; results.json, summary.md and plots in --out.
 #include <sys/wait.h>
 #include <unistd.h>
@@ -86,10 +86,11 @@ int main(int argc, char** argv) {
   bool no_plots = false;
   FlightSpec defaults;
   Eigen::Vector3d start = defaults.start, goal = defaults.goal, size = defaults.size_m;
-  mmh::ArgParser parser("mmh-bench",
-                        "Runs the mission benchmark of BENCHMARK.md in lock-step: every method on "
-                        "the same worlds, start, goal and sensor; writes results.json, summary.md "
-                        "and plots to --out.");
+  mmh::ArgParser parser(
+      "mmh-bench",
+      "Runs the mission benchmark of docs/benchmark.md in lock-step: every method on "
+      "the same worlds, start, goal and sensor; writes results.json, summary.md "
+      "and plots to --out.");
   parser.addString(
       "--methods", &methods_text,
       "comma-separated arbiter policies: mmh, ego, som, mmh-no-lazy, mmh-no-awareness");

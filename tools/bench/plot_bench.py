@@ -16,7 +16,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.patches import Circle  # noqa: E402
 
-PAPER_MMH = {  # BENCHMARK.md: density -> (time, distance, energy, iterations)
+PAPER_MMH = {  # docs/benchmark.md: density -> (time, distance, energy, iterations)
     0.0: (16.52, 39.89, 15.56, 9.0),
     0.05: (17.04, 40.20, 43.93, 12.7),
     0.1: (17.89, 40.84, 80.91, 17.5),

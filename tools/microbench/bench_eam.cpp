@@ -132,8 +132,7 @@ void BM_EamNewPillar(benchmark::State& state) {
   state.counters["a_excess_p50"] = percentile(a_excess, 0.5);
   state.counters["a_excess_max"] = percentile(a_excess, 1.0);
   for (const auto& [reason, n] : failures) {
-    state.counters[std::string("fail_") +
-                   mmh::eam::toString(static_cast<mmh::eam::FailReason>(reason))] = n;
+    state.counters[std::string("fail_") + mmh::toString(static_cast<mmh::PlanStatus>(reason))] = n;
   }
 }
 // Args: density x 100, reference kind (0 straight, 1 committed collision-free).

@@ -52,7 +52,7 @@ std::vector<mmh::fpm::Request> movingStarts() {
 }
 
 // Counters: failed calls, mean duration T_s, and T_over_bound: the duration over the lower bound
-// of a rest-to-rest flight along the straight line, L / v_max + v_max / a_max (BENCHMARK.md),
+// of a rest-to-rest flight along the straight line, L / v_max + v_max / a_max (docs/benchmark.md),
 // or over L / v_max + v_max / (2 a_max) for a start already at v_max towards the target (0 when
 // the requests have no such bound).
 void runPlanner(benchmark::State& state, const std::vector<mmh::fpm::Request>& requests,

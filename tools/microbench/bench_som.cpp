@@ -1,5 +1,5 @@
-// Standard Optimization Mode on the forest scenarios of BENCHMARK.md (fully known 32 x 32 x 4 m
-// windows, start at rest, target 15 m away, 50 seeded scenarios per density): one whole
+// Standard Optimization Mode on the forest scenarios of docs/benchmark.md (fully known 32 x 32 x 4
+// m windows, start at rest, target 15 m away, 50 seeded scenarios per density): one whole
 // Planner::plan() call per iteration, every scenario planned 4 times.
 // Counters (from PlanOutput::timings, milliseconds): median / p90 of the whole call and of each
 // step, wall clock (`*_ms_*`) and the thread's CPU time (`*_cpu_*`, what a call costs when the
@@ -88,7 +88,7 @@ void BM_Som(benchmark::State& state) {
         polys.push_back(out.corridor.polytopes.size());
       } else if (verbose) {
         std::fprintf(stderr, "scenario %zu (map %llu): %s: %s\n", i,
-                     static_cast<unsigned long long>(s.map_seed), mmh::som::toString(out.status),
+                     static_cast<unsigned long long>(s.map_seed), mmh::toString(out.status),
                      out.detail.c_str());
       }
     }

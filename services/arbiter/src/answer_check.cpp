@@ -3,8 +3,38 @@
 #include <algorithm>
 
 #include "mmh/common/collision_check.hpp"
+#include "mmh/common/trajectory_verifier.hpp"
 
 namespace mmh::arbiter {
+namespace {
+
+// The arbiter's words for the shared verifier's checks.
+const char* arbiterWords(VerifyCheck check) {
+  switch (check) {
+    case VerifyCheck::kNotFinite:
+      return "empty or non-finite trajectory";
+    case VerifyCheck::kStartState:
+      return "does not start at the requested state";
+    case VerifyCheck::kSpeed:
+      return "too fast";
+    case VerifyCheck::kAcceleration:
+      return "accelerates too hard";
+    case VerifyCheck::kGeofence:
+      return "leaves the geofence";
+    case VerifyCheck::kOccupied:
+      return "enters an obstacle";
+    case VerifyCheck::kEscapeDeeper:
+      return "goes deeper into the obstacle margin it starts in";
+    case VerifyCheck::kEscapeTooFar:
+      return "does not leave the obstacle margin near its start";
+    case VerifyCheck::kInflated:
+      return "collides with the arbiter's map";
+    default:
+      return toString(check);
+  }
+}
+
+}  // namespace
 
 bool checkAnswer(const Trajectory& t, int64_t answer_start_utime, const RequestedStart& requested,
                  const VoxelGrid* grid, const ArbiterParams& params, std::string* why) {
@@ -16,52 +46,40 @@ bool checkAnswer(const Trajectory& t, int64_t answer_start_utime, const Requeste
   if (t.empty() || !t.isFinite()) return fail("empty or non-finite trajectory");
   if (t.duration() > params.max_answer_duration_s) return fail("longer than max_answer_duration_s");
   if (answer_start_utime != requested.start_utime) return fail("wrong start time");
-  const KinematicState s0 = t.state(0.0);
+  // The shared verifier (mmh/common/trajectory_verifier.hpp) with the arbiter's tolerances and
+  // its time-step sampling.
+  VerifierOptions o;
   // Continuity: the new trajectory must take over the committed one without a jump.
-  if ((s0.position - start.position).norm() > params.start_position_tolerance_m ||
-      (s0.velocity - start.velocity).norm() > params.start_velocity_tolerance_mps ||
-      (s0.acceleration - start.acceleration).norm() > params.start_acceleration_tolerance_mps2) {
-    return fail("does not start at the requested state");
-  }
-  const double tol = 1.0 + params.answer_speed_tolerance;
-  const double start_speed = start.velocity.norm();
-  if (t.maxSpeed() > std::max(params.max_vel_mps, start_speed) * tol) return fail("too fast");
-  if (t.maxAcceleration() > params.max_acc_mps2 * tol) {
-    // A braking start may exceed a_max briefly only if it already did.
-    if (t.maxAcceleration() > std::max(params.max_acc_mps2, start.acceleration.norm()) * tol)
-      return fail("accelerates too hard");
-  }
-  for (double time = 0.0; time <= t.duration(); time += params.check_step_s) {
-    const Eigen::Vector3d p = t.position(time);
-    if ((p.array() < params.geofence_min_m.array() - params.geofence_tolerance_m).any() ||
-        (p.array() > params.geofence_max_m.array() + params.geofence_tolerance_m).any()) {
-      return fail("leaves the geofence");
-    }
-  }
-  double clear_from = 0.0;
-  if (grid && isPointBlocked(*grid, s0.position)) {
-    // A start inside the margin (e.g. stopped next to a newly mapped obstacle) may leave it, as
-    // the planners allow: through no occupied voxel, out of the margin near the start.
-    if (firstCollisionTime(*grid, t, 0.0, t.duration(), CollisionLayer::kOccupied)) {
-      return fail("enters an obstacle");
-    }
-    // Outwards only: never nearer to the occupied cells than the start (or than the check
-    // margin), or a vehicle next to an obstacle is re-planned along it until it touches it.
-    const double min_distance = escapeMinDistance(*grid, s0.position, params.check_inflation_m);
-    while (clear_from < t.duration() && isPointBlocked(*grid, t.position(clear_from))) {
-      if (!keepsEscapeDistance(*grid, t.position(clear_from), min_distance,
-                               params.escape_depth_tolerance_m)) {
-        return fail("goes deeper into the obstacle margin it starts in");
-      }
-      clear_from += params.escape_step_s;
-    }
-    if ((t.position(clear_from) - s0.position).norm() > params.start_escape_radius_m) {
-      return fail("does not leave the obstacle margin near its start");
-    }
-  }
-  if (grid && firstCollisionTime(*grid, t, clear_from, t.duration()).has_value()) {
-    return fail("collides with the arbiter's map");
-  }
+  o.check_start = true;
+  o.start = start;
+  o.start_position_tol_m = params.start_position_tolerance_m;
+  o.start_velocity_tol_mps = params.start_velocity_tolerance_mps;
+  o.start_acceleration_tol_mps2 = params.start_acceleration_tolerance_mps2;
+  // A start above a limit (e.g. braking) may keep it, but not exceed it.
+  o.check_limits = true;
+  o.max_vel_mps = std::max(params.max_vel_mps, start.velocity.norm());
+  o.max_acc_mps2 = std::max(params.max_acc_mps2, start.acceleration.norm());
+  o.limit_relative_tol = params.answer_speed_tolerance;
+  o.maxima = MaximaMethod::kStationaryPoints;
+  o.check_geofence = true;
+  o.geofence_min = params.geofence_min_m;
+  o.geofence_max = params.geofence_max_m;
+  o.geofence_tol_m = params.geofence_tolerance_m;
+  o.sampling = VerifierOptions::Sampling::kTimeSteps;
+  o.time_step_s = params.check_step_s;
+  o.escape_step_s = params.escape_step_s;
+  o.grid = grid;  // null: no map yet, no collision checks
+  o.check_inflated = true;
+  // A start inside the margin (e.g. stopped next to a newly mapped obstacle) may leave it, as
+  // the planners allow: through no occupied voxel, out of the margin near the start, and
+  // outwards only, never nearer to the occupied cells than the start (or than the check
+  // margin), or a vehicle next to an obstacle is re-planned along it until it touches it.
+  o.escape_radius_m = params.start_escape_radius_m;
+  o.escape_depth_tol_m = params.escape_depth_tolerance_m;
+  if (grid)
+    o.escape_min_distance_m = escapeMinDistance(*grid, t.position(0.0), params.check_inflation_m);
+  const VerifyResult v = verifyTrajectory(t, o);
+  if (!v.ok) return fail(arbiterWords(v.failed));
   return true;
 }
 

@@ -1,6 +1,7 @@
 #include "eam_node.hpp"
 
 #include "mmh/common/msg_convert.hpp"
+#include "mmh/common/plan_status_wire.hpp"
 
 namespace mmh {
 
@@ -15,35 +16,6 @@ void EamNode::onLocalMap(const local_map_t& msg) {
       map_.lastWasKeyframe()) {
     planner_.prepare(map_.grid());  // cheap unless the size changed
   }
-}
-
-int16_t EamNode::reasonCode(eam::FailReason reason) {
-  using R = eam::FailReason;
-  switch (reason) {
-    case R::kNone:
-      return plan_result_t::REASON_NONE;
-    case R::kBadInput:
-      return plan_result_t::REASON_BAD_INPUT;
-    case R::kNoMap:
-      return plan_result_t::REASON_NO_MAP;
-    case R::kStartInObstacle:
-      return plan_result_t::REASON_START_IN_OBSTACLE;
-    case R::kTargetInObstacle:
-      return plan_result_t::REASON_TARGET_IN_OBSTACLE;
-    case R::kTargetOutOfBounds:
-      return plan_result_t::REASON_TARGET_OUT_OF_BOUNDS;
-    case R::kInfeasibleStart:
-      return plan_result_t::REASON_INFEASIBLE_START;
-    case R::kStartEqualsTarget:
-      return plan_result_t::REASON_START_EQUALS_TARGET;
-    case R::kNoPath:
-      return plan_result_t::REASON_NO_PATH;
-    case R::kOptimizer:
-      return plan_result_t::REASON_OPTIMIZER;
-    case R::kVerify:
-      return plan_result_t::REASON_VERIFY;
-  }
-  return plan_result_t::REASON_BAD_INPUT;
 }
 
 void EamNode::publishFailure(const plan_request_t& req, int16_t reason, const std::string& detail,
@@ -91,8 +63,8 @@ void EamNode::onPlanRequest(const plan_request_t& req) {
   out.request_id = req.request_id;
   out.mode = plan_request_t::MODE_EAM;
   out.status = result.ok ? plan_result_t::STATUS_OK : plan_result_t::STATUS_FAILED;
-  out.reason = reasonCode(result.reason);
-  out.detail = result.ok ? "" : std::string(eam::toString(result.reason)) + ": " + result.detail;
+  out.reason = toWireReason(result.reason);
+  out.detail = result.ok ? "" : std::string(toString(result.reason)) + ": " + result.detail;
   out.map_seq = map_.mapSeq();
   out.narrow = result.narrow;
   // Cost breakdown: control = exact jerk energy of the answer; no time term in EAM; penalty =

@@ -24,8 +24,6 @@ class EamNode {
   const eam::Planner& planner() const { return planner_; }
 
  private:
-  // Map of the planner's reasons to plan_result_t.REASON_*.
-  static int16_t reasonCode(eam::FailReason reason);
   void publishFailure(const plan_request_t& req, int16_t reason, const std::string& detail,
                       int64_t started_us);
 

@@ -80,14 +80,14 @@ AStarResult GuideSearch::find(const VoxelGrid& grid, const Eigen::Vector3d& from
       o.extra_step_cost = slot_cost;
     }
     const auto t0 = std::chrono::steady_clock::now();
-    AStarResult res = astar_.search(grid, from, goal, o);
+    AStarResult found = astar_.search(grid, from, goal, o);
     stats->us +=
         std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
     ++stats->calls;
-    stats->expansions += res.expansions;
+    stats->expansions += found.expansions;
     for (int64_t idx : slot_touched_) slot_memo_[idx] = 0;
     slot_touched_.clear();
-    return res;
+    return found;
   };
 
   const bool slot_cost_first = avoid_slots && P.astar_slot_cost > 0.0;

@@ -6,9 +6,9 @@
 
 #include "mmh/common/collision_check.hpp"
 #include "mmh/common/narrow_space.hpp"
+#include "mmh/common/trajectory_limits.hpp"
 #include "mmh/eam/bspline_optimizer.hpp"
 #include "mmh/eam/collision_pairs.hpp"
-#include "mmh/eam/cubic_roots.hpp"
 #include "mmh/eam/initial_guess.hpp"
 #include "mmh/eam/verification.hpp"
 
@@ -42,7 +42,7 @@ constexpr double kPathGuessRatio = 1.2;
 // A re-timing stalled when it removed less than this share of the excess ratio.
 constexpr double kRefineProgress = 0.5;
 
-PlanResult fail(PlanResult r, FailReason reason, std::string detail) {
+PlanResult fail(PlanResult r, PlanStatus reason, std::string detail) {
   r.ok = false;
   r.reason = reason;
   r.detail = std::move(detail);
@@ -276,34 +276,6 @@ bool freeAroundLimitExcess(const UniformBspline& spline, const EamParams& p, int
 
 }  // namespace
 
-const char* toString(FailReason reason) {
-  switch (reason) {
-    case FailReason::kNone:
-      return "none";
-    case FailReason::kBadInput:
-      return "bad input";
-    case FailReason::kNoMap:
-      return "no map";
-    case FailReason::kStartInObstacle:
-      return "start in obstacle";
-    case FailReason::kTargetInObstacle:
-      return "target in obstacle";
-    case FailReason::kTargetOutOfBounds:
-      return "target out of bounds";
-    case FailReason::kInfeasibleStart:
-      return "infeasible start";
-    case FailReason::kStartEqualsTarget:
-      return "start equals target";
-    case FailReason::kNoPath:
-      return "no path";
-    case FailReason::kOptimizer:
-      return "optimizer";
-    case FailReason::kVerify:
-      return "verification";
-  }
-  return "?";
-}
-
 void bsplineMaxima(const UniformBspline& spline, double* max_speed, double* max_acc) {
   const Eigen::Matrix3Xd& q = spline.controlPoints();
   const double dt = spline.knotSpan();
@@ -325,14 +297,7 @@ void bsplineMaxima(const UniformBspline& spline, double* max_speed, double* max_
     const Eigen::Vector3d b1 = (q.col(i) - 2.0 * q.col(i + 1) + q.col(i + 2)) / (dt * dt);
     const Eigen::Vector3d b2 =
         (-q.col(i) + 3.0 * q.col(i + 1) - 3.0 * q.col(i + 2) + q.col(i + 3)) / (2.0 * dt * dt * dt);
-    auto speed2 = [&](double t) { return (b0 + t * (b1 + t * b2)).squaredNorm(); };
-    v2 = std::max({v2, speed2(0.0), speed2(dt)});
-    double roots[3];
-    const int n = cubicRoots(2.0 * b2.dot(b2), 3.0 * b1.dot(b2), b1.dot(b1) + 2.0 * b0.dot(b2),
-                             b0.dot(b1), roots);
-    for (int k = 0; k < n; ++k) {
-      if (roots[k] > 0.0 && roots[k] < dt) v2 = std::max(v2, speed2(roots[k]));
-    }
+    v2 = maxSquaredQuadraticNorm(b0, b1, b2, dt, v2);
   }
   *max_speed = std::sqrt(v2);
   *max_acc = std::sqrt(a2) / (dt * dt);
@@ -531,23 +496,23 @@ PlanResult Planner::plan(const VoxelGrid& grid, const PlanRequest& req) {
   // --- input checks -----------------------------------------------------------------------
   if (!req.start.position.allFinite() || !req.start.velocity.allFinite() ||
       !req.start.acceleration.allFinite() || !req.target.allFinite())
-    return fail(r, FailReason::kBadInput, "start state or target is not finite");
+    return fail(r, PlanStatus::kBadInput, "start state or target is not finite");
   if (!req.reference.empty() && !req.reference.isFinite())
-    return fail(r, FailReason::kBadInput, "reference trajectory is not finite or has empty pieces");
-  if (!grid.valid()) return fail(r, FailReason::kNoMap, "no map");
+    return fail(r, PlanStatus::kBadInput, "reference trajectory is not finite or has empty pieces");
+  if (!grid.valid()) return fail(r, PlanStatus::kNoMap, "no map");
   if (!inBox(req.target, P.geofence_min, P.geofence_max))
-    return fail(r, FailReason::kTargetOutOfBounds, "target outside the geofence");
+    return fail(r, PlanStatus::kTargetOutOfBounds, "target outside the geofence");
   if ((req.target - req.start.position).norm() < 1e-3 && req.start.velocity.norm() < 1e-3 &&
       req.start.acceleration.norm() < 1e-3)
-    return fail(r, FailReason::kStartEqualsTarget, "already at rest on the target");
+    return fail(r, PlanStatus::kStartEqualsTarget, "already at rest on the target");
   if (grid.isOccupiedPoint(req.start.position))
-    return fail(r, FailReason::kStartInObstacle, "start inside an occupied cell");
+    return fail(r, PlanStatus::kStartInObstacle, "start inside an occupied cell");
   if (grid.isBlockedPoint(req.target))
-    return fail(r, FailReason::kTargetInObstacle, "target inside the inflated obstacles");
+    return fail(r, PlanStatus::kTargetInObstacle, "target inside the inflated obstacles");
   const double tol = 1.0 + P.limit_tolerance_ratio;
   if (req.start.velocity.norm() > tol * P.max_vel_mps ||
       req.start.acceleration.norm() > tol * P.max_acc_mps2)
-    return fail(r, FailReason::kInfeasibleStart, "start speed or acceleration beyond the limits");
+    return fail(r, PlanStatus::kInfeasibleStart, "start speed or acceleration beyond the limits");
 
   // --- initial guess ----------------------------------------------------------------------
   const Trajectory guess =
@@ -589,7 +554,7 @@ PlanResult Planner::plan(const VoxelGrid& grid, const PlanRequest& req) {
   r.stats.segments = initial.numSegments();
 
   // --- attempts: the rounds from the guess, then (when they run out) a restart ------------------
-  FailReason reason = FailReason::kOptimizer;
+  PlanStatus reason = PlanStatus::kOptimizer;
   std::string detail;
   bool collides = true;  // the last attempt failed on an obstacle (a restart may help)
   for (int attempt = 0; attempt <= P.max_restarts && collides; ++attempt) {
@@ -606,11 +571,11 @@ PlanResult Planner::plan(const VoxelGrid& grid, const PlanRequest& req) {
       const RoundsOutcome outcome = runRounds(grid, req, at, r);
       r.spline = at.spline;
       r.pairs = at.pairs;
-      if (outcome == RoundsOutcome::kNoPath) return fail(r, FailReason::kNoPath, r.detail);
+      if (outcome == RoundsOutcome::kNoPath) return fail(r, PlanStatus::kNoPath, r.detail);
       if (outcome == RoundsOutcome::kOptimizerError)
-        return fail(r, FailReason::kOptimizer, r.detail);
+        return fail(r, PlanStatus::kOptimizer, r.detail);
       if (outcome == RoundsOutcome::kStillColliding) {
-        reason = FailReason::kOptimizer;
+        reason = PlanStatus::kOptimizer;
         collides = true;
         detail = "still in collision after " + std::to_string(r.stats.rounds) + " rounds";
         break;
@@ -634,11 +599,11 @@ PlanResult Planner::plan(const VoxelGrid& grid, const PlanRequest& req) {
         r.jerk_energy = cubicJerkEnergy(traj);
         r.trajectory = std::move(traj);
         r.ok = true;
-        r.reason = FailReason::kNone;
+        r.reason = PlanStatus::kOk;
         r.detail.clear();
         return r;
       }
-      reason = FailReason::kVerify;
+      reason = PlanStatus::kVerify;
       detail = v.why;
       collides = v.collision;
       // The check and the verification sample different points: a curve that grazes a voxel

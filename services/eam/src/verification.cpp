@@ -1,137 +1,52 @@
 #include "mmh/eam/verification.hpp"
 
 #include "mmh/common/collision_check.hpp"
-#include "mmh/eam/cubic_roots.hpp"
+#include "mmh/common/trajectory_verifier.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <initializer_list>
-#include <sstream>
 
 namespace mmh::eam {
-namespace {
-
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(4);
-  s << v;
-  return s.str();
-}
-
-// Exact maxima of |v| and |a|. Pieces of degree <= 3 (what EAM produces) in closed form: the
-// velocity is quadratic, so |v|^2 is a quartic whose stationary points solve a cubic, and the
-// acceleration is linear, so it peaks at an end. Other pieces: Trajectory's general routine.
-void exactMaxima(const Trajectory& traj, double* max_speed, double* max_acc) {
-  for (const Piece& piece : traj.pieces()) {
-    if (!piece.coeffs.rightCols(kMaxPolyOrder - 4).isZero(0.0)) {
-      *max_speed = traj.maxSpeed();
-      *max_acc = traj.maxAcceleration();
-      return;
-    }
-  }
-  double v2 = 0.0, a2 = 0.0;
-  for (const Piece& piece : traj.pieces()) {
-    const double T = piece.duration;
-    const Eigen::Vector3d b0 = piece.coeffs.col(1), b1 = 2.0 * piece.coeffs.col(2),
-                          b2 = 3.0 * piece.coeffs.col(3);
-    auto speed2 = [&](double t) { return (b0 + t * (b1 + t * b2)).squaredNorm(); };
-    v2 = std::max({v2, speed2(0.0), speed2(T)});
-    double roots[3];
-    const int n = cubicRoots(2.0 * b2.dot(b2), 3.0 * b1.dot(b2), b1.dot(b1) + 2.0 * b0.dot(b2),
-                             b0.dot(b1), roots);
-    for (int i = 0; i < n; ++i) {
-      if (roots[i] > 0.0 && roots[i] < T) v2 = std::max(v2, speed2(roots[i]));
-    }
-    a2 = std::max({a2, b1.squaredNorm(), (b1 + 2.0 * T * b2).squaredNorm()});
-  }
-  *max_speed = std::sqrt(v2);
-  *max_acc = std::sqrt(a2);
-}
-
-}  // namespace
 
 Verification verifyTrajectory(const Trajectory& traj, const VoxelGrid& grid,
                               const KinematicState& start, const Eigen::Vector3d& target,
                               const EamParams& params) {
-  Verification r;
-  if (traj.empty() || !traj.isFinite()) {
-    r.why = "trajectory is empty or not finite";
-    return r;
-  }
-  constexpr double kStateTol = 1e-6;
-  const double T = traj.duration();
-  if ((traj.position(0.0) - start.position).norm() > kStateTol ||
-      (traj.velocity(0.0) - start.velocity).norm() > kStateTol ||
-      (traj.acceleration(0.0) - start.acceleration).norm() > kStateTol) {
-    r.why = "does not start at the start state";
-    return r;
-  }
-  if ((traj.position(T) - target).norm() > kStateTol || traj.velocity(T).norm() > kStateTol ||
-      traj.acceleration(T).norm() > kStateTol) {
-    r.why = "does not end at the target at rest";
-    return r;
-  }
-  exactMaxima(traj, &r.max_speed, &r.max_acc);
-
-  // Dense samples, piece by piece, no two further apart than a quarter voxel.
-  const double step_m = 0.25 * grid.resolution();
-  const double dt = std::max(1e-5, step_m / std::max(1e-3, r.max_speed));
-  const Eigen::Vector3d box_lo = params.geofence_min.array() - 0.01;
-  const Eigen::Vector3d box_hi = params.geofence_max.array() + 0.01;
-  bool escaping = true;
-  const double escape_min_distance =
+  // The shared verifier (mmh/common/trajectory_verifier.hpp) with EAM's tolerances: start and
+  // end within 1e-6, both layers with the escape from a start in the margin, the geofence with
+  // 1 cm, the limits (closed-form maxima of the cubic pieces) after the samples, so that a
+  // curve that collides is reported as a collision (a restart may help it).
+  VerifierOptions o;
+  o.check_start = true;
+  o.start = start;
+  o.start_position_tol_m = o.start_velocity_tol_mps = o.start_acceleration_tol_mps2 = 1e-6;
+  o.check_end = true;
+  o.target = target;
+  o.end_position_tol_m = o.rest_velocity_tol_mps = o.rest_acceleration_tol_mps2 = 1e-6;
+  o.check_limits = true;
+  o.max_vel_mps = params.max_vel_mps;
+  o.max_acc_mps2 = params.max_acc_mps2;
+  o.limit_relative_tol = params.limit_tolerance_ratio;
+  o.maxima = MaximaMethod::kCubicClosedForm;
+  o.limits_after_samples = true;
+  o.check_geofence = true;
+  o.geofence_min = params.geofence_min;
+  o.geofence_max = params.geofence_max;
+  o.geofence_tol_m = 0.01;
+  o.grid = &grid;
+  o.check_inflated = true;
+  o.escape_radius_m = params.start_escape_radius_m;
+  o.escape_min_distance_m =
       escapeMinDistance(grid, start.position, params.start_escape_clearance_m);
-  double t0 = 0.0;
-  for (const Piece& piece : traj.pieces()) {
-    // Pieces of degree <= 3 (EAM's) are evaluated with their four coefficients only.
-    const bool cubic = piece.coeffs.rightCols(kMaxPolyOrder - 4).isZero(0.0);
-    const Eigen::Vector3d c0 = piece.coeffs.col(0), c1 = piece.coeffs.col(1),
-                          c2 = piece.coeffs.col(2), c3 = piece.coeffs.col(3);
-    const int n = std::max(1, static_cast<int>(std::ceil(piece.duration / dt)));
-    for (int k = 0; k <= n; ++k) {
-      const double tl = piece.duration * k / n;
-      const Eigen::Vector3d p =
-          cubic ? Eigen::Vector3d(c0 + tl * (c1 + tl * (c2 + tl * c3))) : piece.position(tl);
-      const Eigen::Vector3i cell = grid.localIndexOf(p);
-      const bool in_window = grid.inWindow(cell);  // outside: unknown, i.e. free
-      const int64_t idx = in_window ? grid.linearIndex(cell) : 0;
-      if (in_window && grid.atLinear(idx) == Occupancy::kOccupied) {
-        r.why = "hits an occupied cell at t=" + fmt(t0 + tl) + " s";
-        r.collision = true;
-        return r;
-      }
-      if (in_window && grid.isBlockedLinear(idx)) {
-        if (!(escaping && (p - start.position).norm() <= params.start_escape_radius_m)) {
-          r.why = "enters the inflated obstacles at t=" + fmt(t0 + tl) + " s";
-          r.collision = true;
-          return r;
-        }
-        if (!keepsEscapeDistance(grid, p, escape_min_distance)) {
-          r.why = "goes deeper into the inflated margin it starts in at t=" + fmt(t0 + tl) + " s";
-          r.collision = true;
-          return r;
-        }
-      } else {
-        escaping = false;
-      }
-      if ((p.array() < box_lo.array()).any() || (p.array() > box_hi.array()).any()) {
-        r.why = "leaves the geofence at t=" + fmt(t0 + tl) + " s";
-        return r;
-      }
-    }
-    t0 += piece.duration;
-  }
-  const double tol = 1.0 + params.limit_tolerance_ratio;
-  if (r.max_speed > tol * params.max_vel_mps) {
-    r.why = "max speed " + fmt(r.max_speed) + " m/s exceeds the limit by more than the tolerance";
-    return r;
-  }
-  if (r.max_acc > tol * params.max_acc_mps2) {
-    r.why = "max acceleration " + fmt(r.max_acc) +
-            " m/s^2 exceeds the limit by more than the tolerance";
-    return r;
-  }
-  r.ok = true;
+  o.escape_from_first_sample = true;
+  o.min_time_step_s = 1e-5;
+  o.cubic_fast_path = true;
+  const VerifyResult v = mmh::verifyTrajectory(traj, o);
+  Verification r;
+  r.ok = v.ok;
+  r.why = v.why;
+  r.collision = v.collision();
+  r.max_speed = v.max_speed;
+  r.max_acc = v.max_acc;
   return r;
 }
 

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "mmh/common/msg_convert.hpp"
+#include "mmh/common/plan_status_wire.hpp"
 
 namespace mmh {
 
@@ -22,7 +23,7 @@ plan_result_t FpmNode::answer(const fpm::Planner& planner, const plan_request_t&
   const auto t0 = std::chrono::steady_clock::now();
   fpm::Result r;
   if (msg.mode != plan_request_t::MODE_FPM) {
-    r.reason = plan_result_t::REASON_BAD_INPUT;
+    r.status = PlanStatus::kBadInput;
     r.detail = "request for mode " + std::to_string(msg.mode) + " on the FPM channel";
   } else {
     fpm::Request request;
@@ -34,7 +35,7 @@ plan_result_t FpmNode::answer(const fpm::Planner& planner, const plan_request_t&
   const auto t1 = std::chrono::steady_clock::now();
   out.compute_us = std::chrono::duration_cast<std::chrono::microseconds>(t1 - t0).count();
   out.status = r.ok ? plan_result_t::STATUS_OK : plan_result_t::STATUS_FAILED;
-  out.reason = r.reason;
+  out.reason = toWireReason(r.status);
   out.detail = r.detail;
   out.cost_control = r.cost.control;
   out.cost_time = r.cost.time;

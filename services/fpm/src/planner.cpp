@@ -3,12 +3,17 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mmh/common/trajectory_limits.hpp"
+#include "mmh/common/trajectory_verifier.hpp"
 #include "mmh/fpm/initial_guess.hpp"
-#include "mmh/fpm/limit_check.hpp"
-#include "mmh/plan_result_t.hpp"
 
 namespace mmh::fpm {
 namespace {
+
+// FPM checks its limits with the Bernstein bound (never below the true maximum).
+KinematicMaxima measureLimits(const Trajectory& traj) {
+  return trajectoryMaxima(traj, MaximaMethod::kBernsteinBound);
+}
 
 constexpr double kSamePointM = 1e-3;  // start and target closer than this are "the same"
 
@@ -24,43 +29,42 @@ bool inside(const Eigen::Vector3d& p, const Params& params) {
 }  // namespace
 
 bool Planner::validate(const Request& r, Result& out) const {
-  auto fail = [&](int16_t reason, const std::string& detail) {
+  auto fail = [&](PlanStatus status, const std::string& detail) {
     out.ok = false;
-    out.reason = reason;
+    out.status = status;
     out.detail = detail;
     return false;
   };
   bool all_finite = finite(r.start.position) && finite(r.start.velocity) &&
                     finite(r.start.acceleration) && finite(r.target);
   for (const Eigen::Vector3d& w : r.waypoints) all_finite = all_finite && finite(w);
-  if (!all_finite) return fail(plan_result_t::REASON_BAD_INPUT, "request has NaN or Inf values");
+  if (!all_finite) return fail(PlanStatus::kBadInput, "request has NaN or Inf values");
   if (!inside(r.target, params_))
-    return fail(plan_result_t::REASON_TARGET_OUT_OF_BOUNDS, "target is outside the geofence");
+    return fail(PlanStatus::kTargetOutOfBounds, "target is outside the geofence");
   for (const Eigen::Vector3d& w : r.waypoints)
     if (!inside(w, params_))
-      return fail(plan_result_t::REASON_TARGET_OUT_OF_BOUNDS, "a waypoint is outside the geofence");
+      return fail(PlanStatus::kTargetOutOfBounds, "a waypoint is outside the geofence");
   const double v0 = r.start.velocity.norm(), a0 = r.start.acceleration.norm();
   const double vmax = params_.max_vel_mps, amax = params_.max_acc_mps2;
   if (v0 > vmax * (1.0 + 1e-9) || a0 > amax * (1.0 + 1e-9))
-    return fail(plan_result_t::REASON_INFEASIBLE_START,
-                "start speed " + std::to_string(v0) + " m/s or acceleration " + std::to_string(a0) +
-                    " m/s^2 is above the limits");
+    return fail(PlanStatus::kInfeasibleStart, "start speed " + std::to_string(v0) +
+                                                  " m/s or acceleration " + std::to_string(a0) +
+                                                  " m/s^2 is above the limits");
   // At the speed limit and still speeding up: the limit breaks at once, whatever follows.
   if (v0 > vmax * (1.0 - 1e-9) && r.start.velocity.dot(r.start.acceleration) > 1e-9)
-    return fail(plan_result_t::REASON_INFEASIBLE_START,
-                "start is at the speed limit and still accelerating");
+    return fail(PlanStatus::kInfeasibleStart, "start is at the speed limit and still accelerating");
   Eigen::Vector3d prev = r.start.position;
   for (const Eigen::Vector3d& w : r.waypoints) {
     if ((w - prev).norm() < kSamePointM)
-      return fail(plan_result_t::REASON_BAD_INPUT, "two consecutive waypoints coincide");
+      return fail(PlanStatus::kBadInput, "two consecutive waypoints coincide");
     prev = w;
   }
   if ((r.target - prev).norm() < kSamePointM) {
     if (r.waypoints.empty() && v0 < 1e-6 && a0 < 1e-6)
-      return fail(plan_result_t::REASON_START_EQUALS_TARGET,
+      return fail(PlanStatus::kStartEqualsTarget,
                   "start equals target and is at rest: nothing to plan (hold position)");
     if (!r.waypoints.empty())
-      return fail(plan_result_t::REASON_BAD_INPUT, "the last waypoint equals the target");
+      return fail(PlanStatus::kBadInput, "the last waypoint equals the target");
     // Moving through the target: plan the way back to it (the profile turns around).
   }
   return true;
@@ -79,7 +83,7 @@ Result Planner::plan(const Request& request) const {
   }
   out.ok = false;
   out.trajectory = Trajectory();
-  out.reason = plan_result_t::REASON_VERIFY;
+  out.status = PlanStatus::kVerify;
   out.detail = "limits still broken with the widest margin: max speed " +
                std::to_string(out.max_speed) + " m/s, max acceleration " +
                std::to_string(out.max_acc) + " m/s^2";
@@ -133,17 +137,17 @@ bool Planner::planWithMargin(const Request& request, double margin_ratio, Result
   settings.max_evaluations = params_.max_evaluations * (request.waypoints.empty() ? 1 : 5);
   out.evaluations += optimizer.optimize(settings);
 
-  // Exact check of the limits over the whole trajectory (Bernstein bounds, limit_check.hpp).
-  // The penalties only see samples; if the result breaks a limit between them, re-optimise once
-  // with the penalty limits lowered by the overshoot and denser samples. Of the candidates that
-  // pass - including the initial guess, an S-curve inside the limits by construction when the
-  // start moves along the path - the one with the lowest cost wins.
+  // Exact check of the limits over the whole trajectory (Bernstein bounds,
+  // mmh/common/trajectory_limits.hpp). The penalties only see samples; if the result breaks a limit
+  // between them, re-optimise once with the penalty limits lowered by the overshoot and denser
+  // samples. Of the candidates that pass - including the initial guess, an S-curve inside the
+  // limits by construction when the start moves along the path - the one with the lowest cost wins.
   Trajectory traj = optimizer.trajectory();
-  LimitReport limits = measureLimits(traj);
+  KinematicMaxima limits = measureLimits(traj);
   // On a line the guess is already within ~0.1 % of the optimum: take it rather than
   // re-optimising.
   if (!limits.within(vmax, amax) && on_line) {
-    const LimitReport initial_limits = measureLimits(initial);
+    const KinematicMaxima initial_limits = measureLimits(initial);
     if (initial_limits.within(vmax, amax)) {
       ++out.repairs;
       optimizer.setup(guess.knots, guess.fixed, guess.durations);
@@ -159,7 +163,7 @@ bool Planner::planWithMargin(const Request& request, double margin_ratio, Result
     out.evaluations += optimizer.optimize(settings);
     traj = optimizer.trajectory();
     limits = measureLimits(traj);
-    const LimitReport initial_limits = measureLimits(initial);
+    const KinematicMaxima initial_limits = measureLimits(initial);
     const auto cost = [&](const Trajectory& t) {
       return t.jerkEnergy() + params_.time_weight * t.duration();
     };
@@ -172,9 +176,16 @@ bool Planner::planWithMargin(const Request& request, double margin_ratio, Result
   }
   out.max_speed = limits.max_speed;
   out.max_acc = limits.max_acc;
-  if (!traj.isFinite() || !limits.within(vmax, amax)) return false;
+  // Accepted by the shared verifier: finite pieces, exact limits (Bernstein bound) within 1e-9.
+  VerifierOptions check;
+  check.check_limits = true;
+  check.max_vel_mps = vmax;
+  check.max_acc_mps2 = amax;
+  check.limit_absolute_tol = 1e-9;
+  check.maxima = MaximaMethod::kBernsteinBound;
+  if (!verifyTrajectory(traj, check).ok) return false;
   out.ok = true;
-  out.reason = plan_result_t::REASON_NONE;
+  out.status = PlanStatus::kOk;
   out.detail.clear();
   out.trajectory = std::move(traj);
   settings.v_limit = v_limit;

@@ -4,6 +4,23 @@
 
 namespace mmh {
 
+local_map_t toLocalMap(const mapping::MapUpdate& update) {
+  local_map_t msg{};
+  msg.header.utime = update.utime;
+  msg.map_seq = update.map_seq;
+  msg.resolution_m = update.resolution_m;
+  for (int i = 0; i < 3; ++i) {
+    msg.origin_index[i] = update.origin_index[i];
+    msg.size[i] = update.size[i];
+  }
+  msg.kind = update.keyframe ? local_map_t::KIND_KEYFRAME : local_map_t::KIND_DELTA;
+  msg.base_seq = update.base_seq;
+  msg.runs = encodeRuns(update.cells);
+  msg.num_bytes = static_cast<int32_t>(msg.runs.size());
+  msg.num_changed = static_cast<int32_t>(update.cells.size());
+  return msg;
+}
+
 MappingNode::MappingNode(ServiceContext& ctx, const Config& config)
     : ctx_(ctx), mapper_(mapping::loadMappingParams(config)) {
   ctx_.subscribe(channels::kPointcloud, &MappingNode::onPointcloud, this);
@@ -38,8 +55,9 @@ void MappingNode::onPointcloud(const pointcloud_t& msg) {
   ctx_.increment("scans_inserted");
   if (r.filter.cropped > 0)
     ctx_.increment("points_cropped", static_cast<int64_t>(r.filter.cropped));
-  ctx_.publish(channels::kLocalMap, r.map);
-  ctx_.increment(r.keyframe ? "keyframes" : "deltas");
+  local_map_t out = toLocalMap(r.map);
+  ctx_.publish(channels::kLocalMap, out);
+  ctx_.increment(r.map.keyframe ? "keyframes" : "deltas");
   last_compute_us_ = wallTimeUs() - t0;
   ctx_.increment("compute_us_total", last_compute_us_);
 }

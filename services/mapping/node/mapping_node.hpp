@@ -7,11 +7,16 @@
 
 #include "mmh/common/config.hpp"
 #include "mmh/common/lcm_runtime.hpp"
+#include "mmh/local_map_t.hpp"
 #include "mmh/mapping/mapper.hpp"
 #include "mmh/odometry_t.hpp"
 #include "mmh/pointcloud_t.hpp"
 
 namespace mmh {
+
+// The LOCAL_MAP message of a map update (header.utime = the scan's time; source and seq are the
+// publisher's).
+local_map_t toLocalMap(const mapping::MapUpdate& update);
 
 class MappingNode {
  public:

@@ -7,44 +7,36 @@ namespace mmh::mapping {
 
 namespace {
 
-void fillGeometry(const OccupancyMap& map, int64_t map_seq, local_map_t& msg) {
-  msg.map_seq = map_seq;
-  msg.resolution_m = map.resolution();
-  for (int i = 0; i < 3; ++i) {
-    msg.origin_index[i] = map.windowOrigin()[i];
-    msg.size[i] = map.windowSize()[i];
-  }
+MapUpdate geometryOf(const OccupancyMap& map, int64_t map_seq) {
+  MapUpdate u;
+  u.map_seq = map_seq;
+  u.resolution_m = map.resolution();
+  u.origin_index = map.windowOrigin();
+  u.size = map.windowSize();
+  return u;
 }
 
-// The same messages as common's makeKeyframe / makeDelta, from the map's state array (the map
+// The same content as common's makeKeyframe / makeDelta, from the map's state array (the map
 // keeps no VoxelGrid: moving one costs a full copy of the window).
-local_map_t keyframeOf(const OccupancyMap& map, int64_t map_seq) {
-  local_map_t msg{};
-  fillGeometry(map, map_seq, msg);
-  msg.kind = local_map_t::KIND_KEYFRAME;
-  msg.base_seq = 0;
-  std::vector<CellChange> known;
+MapUpdate keyframeOf(const OccupancyMap& map, int64_t map_seq) {
+  MapUpdate u = geometryOf(map, map_seq);
+  u.keyframe = true;
+  u.base_seq = 0;
   const std::vector<uint8_t>& states = map.windowStates();
   for (size_t i = 0; i < states.size(); ++i) {
     if (states[i] != 0)
-      known.emplace_back(static_cast<int64_t>(i), static_cast<Occupancy>(states[i]));
+      u.cells.emplace_back(static_cast<int64_t>(i), static_cast<Occupancy>(states[i]));
   }
-  msg.runs = encodeRuns(known);
-  msg.num_bytes = static_cast<int32_t>(msg.runs.size());
-  msg.num_changed = static_cast<int32_t>(known.size());
-  return msg;
+  return u;
 }
 
-local_map_t deltaOf(const OccupancyMap& map, int64_t map_seq, int64_t base_seq,
-                    const std::vector<CellChange>& changes) {
-  local_map_t msg{};
-  fillGeometry(map, map_seq, msg);
-  msg.kind = local_map_t::KIND_DELTA;
-  msg.base_seq = base_seq;
-  msg.runs = encodeRuns(changes);
-  msg.num_bytes = static_cast<int32_t>(msg.runs.size());
-  msg.num_changed = static_cast<int32_t>(changes.size());
-  return msg;
+MapUpdate deltaOf(const OccupancyMap& map, int64_t map_seq, int64_t base_seq,
+                  std::vector<CellChange> changes) {
+  MapUpdate u = geometryOf(map, map_seq);
+  u.keyframe = false;
+  u.base_seq = base_seq;
+  u.cells = std::move(changes);
+  return u;
 }
 
 }  // namespace
@@ -64,10 +56,10 @@ Mapper::Result Mapper::processScan(const ScanInput& scan, int64_t utime) {
   result.window_moved = map_.followVehicle(have_vehicle_ ? vehicle_ : scan.sensor_position);
   result.insert = map_.insert(filtered_);
   const int64_t period_us = std::llround(params_.keyframe_period_s * 1e6);
-  result.keyframe = keyframe_requested_ || utime - last_keyframe_utime_ >= period_us ||
-                    utime < last_keyframe_utime_;
+  const bool keyframe = keyframe_requested_ || utime - last_keyframe_utime_ >= period_us ||
+                        utime < last_keyframe_utime_;
   ++map_seq_;
-  if (result.keyframe) {
+  if (keyframe) {
     map_.clearChanges();
     recent_changes_.clear();
     result.map = keyframeOf(map_, map_seq_);
@@ -80,11 +72,11 @@ Mapper::Result Mapper::processScan(const ScanInput& scan, int64_t utime) {
   } else {
     result.map = nextDelta();
   }
-  result.map.header.utime = utime;
+  result.map.utime = utime;
   return result;
 }
 
-local_map_t Mapper::nextDelta() {
+MapUpdate Mapper::nextDelta() {
   // This delta's cells and those of the deltas before it, up to delta_repeat in all and never
   // past the last keyframe, each with its current state: a receiver that lost fewer messages in
   // a row applies it exactly.

@@ -4,39 +4,9 @@
 
 #include "mmh/common/log.hpp"
 #include "mmh/common/msg_convert.hpp"
+#include "mmh/common/plan_status_wire.hpp"
 
 namespace mmh {
-
-int16_t reasonCode(som::PlanStatus status) {
-  using S = som::PlanStatus;
-  switch (status) {
-    case S::kOk:
-      return plan_result_t::REASON_NONE;
-    case S::kBadInput:
-      return plan_result_t::REASON_BAD_INPUT;
-    case S::kNoMap:
-      return plan_result_t::REASON_NO_MAP;
-    case S::kStartInObstacle:
-      return plan_result_t::REASON_START_IN_OBSTACLE;
-    case S::kTargetInObstacle:
-      return plan_result_t::REASON_TARGET_IN_OBSTACLE;
-    case S::kTargetOutOfBounds:
-      return plan_result_t::REASON_TARGET_OUT_OF_BOUNDS;
-    case S::kInfeasibleStart:
-      return plan_result_t::REASON_INFEASIBLE_START;
-    case S::kStartEqualsTarget:
-      return plan_result_t::REASON_START_EQUALS_TARGET;
-    case S::kNoPath:
-      return plan_result_t::REASON_NO_PATH;
-    case S::kCorridor:
-      return plan_result_t::REASON_CORRIDOR;
-    case S::kOptimizer:
-      return plan_result_t::REASON_OPTIMIZER;
-    case S::kVerify:
-      return plan_result_t::REASON_VERIFY;
-  }
-  return plan_result_t::REASON_BAD_INPUT;
-}
 
 SomNode::SomNode(ServiceContext& ctx, const Config& config)
     : ctx_(ctx),
@@ -81,10 +51,10 @@ void SomNode::onPlanRequest(const plan_request_t& req) {
                 static_cast<int>(last_.corridor.polytopes.size()), t.optimize.wall_us * 1e-3,
                 last_.optimizer_evaluations, t.verify.wall_us * 1e-3);
   result.status = last_.ok() ? plan_result_t::STATUS_OK : plan_result_t::STATUS_FAILED;
-  result.reason = reasonCode(last_.status);
-  result.detail = last_.ok() ? std::string(split)
-                             : std::string(som::toString(last_.status)) + ": " + last_.detail +
-                                   " [" + split + "]";
+  result.reason = toWireReason(last_.status);
+  result.detail =
+      last_.ok() ? std::string(split)
+                 : std::string(toString(last_.status)) + ": " + last_.detail + " [" + split + "]";
   result.cost_total = last_.cost_total;
   result.cost_control = last_.cost_control;
   result.cost_time = last_.cost_time;

@@ -35,7 +35,4 @@ class SomNode {
   som::PlanOutput last_;
 };
 
-// PLAN_RESULT reason code of a planner status.
-int16_t reasonCode(som::PlanStatus status);
-
 }  // namespace mmh

@@ -8,36 +8,6 @@
 
 namespace mmh::som {
 
-const char* toString(PlanStatus status) {
-  switch (status) {
-    case PlanStatus::kOk:
-      return "ok";
-    case PlanStatus::kBadInput:
-      return "bad input";
-    case PlanStatus::kNoMap:
-      return "no map";
-    case PlanStatus::kStartInObstacle:
-      return "start in obstacle";
-    case PlanStatus::kTargetInObstacle:
-      return "target in obstacle";
-    case PlanStatus::kTargetOutOfBounds:
-      return "target out of bounds";
-    case PlanStatus::kInfeasibleStart:
-      return "infeasible start";
-    case PlanStatus::kStartEqualsTarget:
-      return "start equals target";
-    case PlanStatus::kNoPath:
-      return "no path";
-    case PlanStatus::kCorridor:
-      return "corridor";
-    case PlanStatus::kOptimizer:
-      return "optimizer";
-    case PlanStatus::kVerify:
-      return "verification";
-  }
-  return "?";
-}
-
 double restToRestTimeBound(double length_m, double max_vel_mps, double max_acc_mps2) {
   if (length_m >= max_vel_mps * max_vel_mps / max_acc_mps2)
     return length_m / max_vel_mps + max_vel_mps / max_acc_mps2;

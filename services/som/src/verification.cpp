@@ -1,6 +1,6 @@
 #include "mmh/som/verification.hpp"
 
-#include "mmh/common/collision_check.hpp"
+#include "mmh/common/trajectory_verifier.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -32,60 +32,43 @@ VerifyReport verifyTrajectory(const Trajectory& traj, const KinematicState& star
   if (traj.empty() || !traj.isFinite()) return fail("trajectory is empty or not finite");
   if (static_cast<int>(piece_polytope.size()) != traj.numPieces())
     return fail("piece-to-polytope map does not match the trajectory");
-  const double t_end = traj.duration();
-  if ((traj.position(0.0) - start.position).norm() > 1e-9 ||
-      (traj.velocity(0.0) - start.velocity).norm() > 1e-9 ||
-      (traj.acceleration(0.0) - start.acceleration).norm() > 1e-9)
-    return fail("does not start at the requested state");
-  const double end_err = (traj.position(t_end) - target).norm();
-  if (end_err > params.endpoint_tolerance_m)
-    return fail("ends " + fmt(end_err) + " m from the target");
-  if (traj.velocity(t_end).norm() > 1e-3 || traj.acceleration(t_end).norm() > 1e-3)
-    return fail("does not end at rest");
-
-  r.max_speed = traj.maxSpeed();
-  r.max_acceleration = traj.maxAcceleration();
-  if (r.max_speed > max_vel_mps * (1.0 + params.limit_tolerance))
-    return fail("max speed " + fmt(r.max_speed) + " m/s exceeds " + fmt(max_vel_mps));
-  if (r.max_acceleration > max_acc_mps2 * (1.0 + params.limit_tolerance))
-    return fail("max acceleration " + fmt(r.max_acceleration) + " m/s^2 exceeds " +
-                fmt(max_acc_mps2));
-
-  // Samples no more than a quarter voxel apart along the path.
-  const double dt = std::max(1e-4, 0.25 * grid.resolution() / std::max(r.max_speed, 1e-3));
-  // A start inside the inflated margin leaves it outwards: while the samples are in the margin,
-  // none nearer to the occupied cells than escape_min_distance_m (mmh::keepsEscapeDistance).
-  bool escaping = grid.isBlockedPoint(start.position);
-  for (int i = 0; i < traj.numPieces(); ++i) {
-    const Piece& piece = traj.pieces()[i];
-    const int steps = std::max(1, static_cast<int>(std::ceil(piece.duration / dt)));
-    const Polytope& own = corridor.polytopes.at(piece_polytope[i]);
-    const PieceCoeffs& c = piece.coeffs;
-    for (int j = 0; j <= steps; ++j) {
-      // Horner on the piece's own coefficients (the same polynomial Piece::position evaluates).
-      const double t = piece.duration * j / steps;
-      Eigen::Vector3d p = c.col(kMaxPolyOrder - 1);
-      for (int k = kMaxPolyOrder - 2; k >= 0; --k) p = p * t + c.col(k);
-      ++r.samples;
-      if (grid.isOccupiedPoint(p))
-        return fail("sample at t-piece " + std::to_string(i) + " lies in an occupied voxel");
-      if (escaping) {
-        if (!grid.isBlockedPoint(p)) {
-          escaping = false;
-        } else if (!keepsEscapeDistance(grid, p, escape_min_distance_m)) {
-          return fail("goes deeper into the inflated margin it starts in (piece " +
-                      std::to_string(i) + ")");
-        }
-      }
-      double v = own.maxViolation(p);
-      if (v > params.corridor_tolerance_m) {
-        for (const Polytope& other : corridor.polytopes) v = std::min(v, other.maxViolation(p));
-      }
-      r.max_corridor_violation_m = std::max(r.max_corridor_violation_m, v);
-      if (v > params.corridor_tolerance_m)
-        return fail("leaves the corridor by " + fmt(v) + " m in piece " + std::to_string(i));
+  // The shared verifier (mmh/common/trajectory_verifier.hpp) with SOM's tolerances: the start
+  // exactly, the end within the endpoint tolerance and at rest, the limits before the samples,
+  // only the occupied layer (the corridor keeps the margin) and, on top, the corridor.
+  VerifierOptions o;
+  o.check_start = true;
+  o.start = start;
+  o.start_position_tol_m = o.start_velocity_tol_mps = o.start_acceleration_tol_mps2 = 1e-9;
+  o.check_end = true;
+  o.target = target;
+  o.end_position_tol_m = params.endpoint_tolerance_m;
+  o.rest_velocity_tol_mps = o.rest_acceleration_tol_mps2 = 1e-3;
+  o.check_limits = true;
+  o.max_vel_mps = max_vel_mps;
+  o.max_acc_mps2 = max_acc_mps2;
+  o.limit_relative_tol = params.limit_tolerance;
+  o.maxima = MaximaMethod::kStationaryPoints;
+  o.grid = &grid;
+  o.check_inflated = false;
+  o.escape_min_distance_m = escape_min_distance_m;
+  o.escape_from_first_sample = false;  // only a start that lies in the margin escapes
+  o.min_time_step_s = 1e-4;
+  o.sample_check = [&](int piece, double, const Eigen::Vector3d& p, std::string* why) {
+    // In its piece's polytope, or in some polytope of the corridor, within the tolerance.
+    double v = corridor.polytopes.at(piece_polytope[piece]).maxViolation(p);
+    if (v > params.corridor_tolerance_m) {
+      for (const Polytope& other : corridor.polytopes) v = std::min(v, other.maxViolation(p));
     }
-  }
+    r.max_corridor_violation_m = std::max(r.max_corridor_violation_m, v);
+    if (v <= params.corridor_tolerance_m) return true;
+    *why = "leaves the corridor by " + fmt(v) + " m in piece " + std::to_string(piece);
+    return false;
+  };
+  const VerifyResult v = mmh::verifyTrajectory(traj, o);
+  r.max_speed = v.max_speed;
+  r.max_acceleration = v.max_acc;
+  r.samples = v.samples;
+  if (!v.ok) return fail(v.why);
   r.ok = true;
   return r;
 }

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Three hosts as network namespaces joined by a bridge (DESIGN.md section 5), the deployment
+# Three hosts as network namespaces joined by a bridge (docs/operations.md, "Several machines"), the deployment
 # started by deploy/deploy.sh from a manifest with ttl=1: vehicle (sim, mapping), planner
 # (awareness, FPM, SOM, EAM, arbiter), ground station (lcm-logger, goal). The vehicle reaches the
 # goal, and the ground station's log holds every channel that was on the network (a reference

@@ -16,7 +16,7 @@
 #include "mmh/eam/verification.hpp"
 
 using Eigen::Vector3d;
-using mmh::eam::FailReason;
+using mmh::PlanStatus;
 using mmh::eam::PlanRequest;
 using mmh::eam::PlanResult;
 
@@ -246,7 +246,7 @@ TEST(EamPlanner, EmptyReferenceUsesAStraightGuess) {
   req.target = Vector3d(8, 0.5, 1.2);
   const PlanResult r = planner.plan(g, req);
   expectValid(g, req, r, p);
-  EXPECT_EQ(r.reason, FailReason::kNone);
+  EXPECT_EQ(r.reason, mmh::PlanStatus::kOk);
 }
 
 // At rest just before a wall whose only opening is far to the side (the vehicle stopped
@@ -301,43 +301,43 @@ TEST(EamPlanner, BadInputGetsAReasonAndNoCrash) {
 
   PlanRequest r1 = good;
   r1.start.velocity.y() = nan;
-  EXPECT_EQ(planner.plan(g, r1).reason, FailReason::kBadInput);
+  EXPECT_EQ(planner.plan(g, r1).reason, mmh::PlanStatus::kBadInput);
 
   PlanRequest r2 = good;
   r2.target.x() = std::numeric_limits<double>::infinity();
-  EXPECT_EQ(planner.plan(g, r2).reason, FailReason::kBadInput);
+  EXPECT_EQ(planner.plan(g, r2).reason, mmh::PlanStatus::kBadInput);
 
   PlanRequest r3 = good;  // a reference with a NaN coefficient
   r3.reference.pieces()[0].coeffs(1, 3) = nan;
-  EXPECT_EQ(planner.plan(g, r3).reason, FailReason::kBadInput);
+  EXPECT_EQ(planner.plan(g, r3).reason, mmh::PlanStatus::kBadInput);
 
   PlanRequest r4 = good;  // a reference piece of zero duration
   r4.reference.pieces()[0].duration = 0.0;
-  EXPECT_EQ(planner.plan(g, r4).reason, FailReason::kBadInput);
+  EXPECT_EQ(planner.plan(g, r4).reason, mmh::PlanStatus::kBadInput);
 
   PlanRequest r5 = good;
   r5.target = Vector3d(5.0, 0.0, 1.2);  // inside the pillar
-  EXPECT_EQ(planner.plan(g, r5).reason, FailReason::kTargetInObstacle);
+  EXPECT_EQ(planner.plan(g, r5).reason, mmh::PlanStatus::kTargetInObstacle);
   r5.target = Vector3d(5.0, 0.75, 1.2);  // in its inflated margin
-  EXPECT_EQ(planner.plan(g, r5).reason, FailReason::kTargetInObstacle);
+  EXPECT_EQ(planner.plan(g, r5).reason, mmh::PlanStatus::kTargetInObstacle);
 
   PlanRequest r6 = good;
   r6.start.position = Vector3d(5.0, 0.1, 1.2);
-  EXPECT_EQ(planner.plan(g, r6).reason, FailReason::kStartInObstacle);
+  EXPECT_EQ(planner.plan(g, r6).reason, mmh::PlanStatus::kStartInObstacle);
 
   PlanRequest r7 = good;
   r7.target = Vector3d(10.0, 0.0, 2.9);  // above the geofence
-  EXPECT_EQ(planner.plan(g, r7).reason, FailReason::kTargetOutOfBounds);
+  EXPECT_EQ(planner.plan(g, r7).reason, mmh::PlanStatus::kTargetOutOfBounds);
 
   PlanRequest r8 = good;
   r8.start.velocity = Vector3d(4.0, 0.0, 0.0);  // beyond v_max by more than the tolerance
-  EXPECT_EQ(planner.plan(g, r8).reason, FailReason::kInfeasibleStart);
+  EXPECT_EQ(planner.plan(g, r8).reason, mmh::PlanStatus::kInfeasibleStart);
 
   PlanRequest r9;
   r9.start.position = r9.target = Vector3d(1.0, 0.0, 1.2);
-  EXPECT_EQ(planner.plan(g, r9).reason, FailReason::kStartEqualsTarget);
+  EXPECT_EQ(planner.plan(g, r9).reason, mmh::PlanStatus::kStartEqualsTarget);
 
-  EXPECT_EQ(planner.plan(mmh::VoxelGrid(), good).reason, FailReason::kNoMap);
+  EXPECT_EQ(planner.plan(mmh::VoxelGrid(), good).reason, mmh::PlanStatus::kNoMap);
 
   // Every failure carries no trajectory and a readable detail.
   const PlanResult f = planner.plan(g, r5);
@@ -356,7 +356,7 @@ TEST(EamPlanner, EnclosedTargetHasNoPath) {
   mmh::eam::Planner planner(params());
   const PlanResult r = planner.plan(g, request(Vector3d(0, 0, 1.2), Vector3d(8, 0, 1.2), 7.0));
   EXPECT_FALSE(r.ok);
-  EXPECT_EQ(r.reason, FailReason::kNoPath);
+  EXPECT_EQ(r.reason, mmh::PlanStatus::kNoPath);
 }
 
 TEST(EamVerification, AStartInTheMarginLeavesItOutwardsOnly) {

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <random>
 
+#include "mmh/common/trajectory_limits.hpp"
 #include "mmh/fpm/hermite_pieces.hpp"
-#include "mmh/fpm/limit_check.hpp"
 #include "mmh/fpm/speed_profile.hpp"
 
 using Eigen::Vector3d;
@@ -75,7 +75,8 @@ TEST(LimitCheck, BernsteinMaximaAgreeWithPolynomialRootsAndNeverUnderestimate) {
     for (int a = 0; a < 3; ++a)
       for (int j = 0; j < 6; ++j) p.coeffs(a, j) = u(rng) * std::pow(1.5, -j);
     const mmh::Trajectory one({p});
-    const double v = mmh::fpm::maxDerivativeNorm(p, 1), a = mmh::fpm::maxDerivativeNorm(p, 2);
+    const double v = mmh::bernsteinMaxDerivativeNorm(p, 1),
+                 a = mmh::bernsteinMaxDerivativeNorm(p, 2);
     // Same maxima as the root-based ones of common/ (an independent method) ...
     EXPECT_NEAR(v, one.maxSpeed(), 1e-8 * std::max(1.0, v));
     EXPECT_NEAR(a, one.maxAcceleration(), 1e-8 * std::max(1.0, a));
@@ -89,15 +90,15 @@ TEST(LimitCheck, FlatMaximumAndDegreeSevenPieces) {
   mmh::Piece cruise;  // constant speed 3: the maximum is attained everywhere
   cruise.duration = 4.0;
   cruise.coeffs.col(1) = Vector3d(3.0, 0.0, 0.0);
-  EXPECT_NEAR(mmh::fpm::maxDerivativeNorm(cruise, 1), 3.0, 1e-9);
-  EXPECT_NEAR(mmh::fpm::maxDerivativeNorm(cruise, 2), 0.0, 1e-9);
+  EXPECT_NEAR(mmh::bernsteinMaxDerivativeNorm(cruise, 1), 3.0, 1e-9);
+  EXPECT_NEAR(mmh::bernsteinMaxDerivativeNorm(cruise, 2), 0.0, 1e-9);
   mmh::Piece seven;
   seven.duration = 1.3;
   seven.coeffs.col(7) = Vector3d(0.3, -0.2, 0.1);
   seven.coeffs.col(2) = Vector3d(1.0, 0.5, 0.0);
   const mmh::Trajectory t({seven});
-  EXPECT_NEAR(mmh::fpm::maxDerivativeNorm(seven, 1), t.maxSpeed(), 1e-8);
-  EXPECT_NEAR(mmh::fpm::maxDerivativeNorm(seven, 2), t.maxAcceleration(), 1e-8);
+  EXPECT_NEAR(mmh::bernsteinMaxDerivativeNorm(seven, 1), t.maxSpeed(), 1e-8);
+  EXPECT_NEAR(mmh::bernsteinMaxDerivativeNorm(seven, 2), t.maxAcceleration(), 1e-8);
 }
 
 TEST(SpeedProfile, TrapezoidTriangleAndTurnAround) {
@@ -106,7 +107,7 @@ TEST(SpeedProfile, TrapezoidTriangleAndTurnAround) {
   ProfileSpec spec;
   spec.length = 40.0;
   const SpeedProfile trap = SpeedProfile::restToTarget(spec);
-  EXPECT_NEAR(trap.duration(), 40.0 / 3.0 + 1.5, 1e-9);  // the bound of BENCHMARK.md
+  EXPECT_NEAR(trap.duration(), 40.0 / 3.0 + 1.5, 1e-9);  // the bound of docs/benchmark.md
   EXPECT_NEAR(trap.positionAt(trap.duration()), 40.0, 1e-9);
   spec.length = 2.0;  // triangle: never reaches v_max
   const SpeedProfile tri = SpeedProfile::restToTarget(spec);

@@ -6,10 +6,8 @@
 #include <random>
 
 #include "mmh/fpm/planner.hpp"
-#include "mmh/plan_result_t.hpp"
 
 using Eigen::Vector3d;
-using mmh::plan_result_t;
 
 namespace {
 
@@ -82,7 +80,7 @@ TEST(FpmPlanner, FortyMetresRestToRestIsCloseToTheTimeBound) {
                          Vector3d(19.95, 0, 1.2));
   const auto res = planner.plan(r);
   verify(r, res, "40 m");
-  const double bound = 39.9 / 3.0 + 1.5;               // 14.80 s (BENCHMARK.md)
+  const double bound = 39.9 / 3.0 + 1.5;               // 14.80 s (docs/benchmark.md)
   EXPECT_LT(res.trajectory.duration(), 1.10 * bound);  // the requirement
   EXPECT_LT(res.trajectory.duration(), 1.02 * bound);  // what this planner achieves
   EXPECT_GT(res.trajectory.duration(), bound);
@@ -164,7 +162,7 @@ TEST(FpmPlanner, RandomStartStatesAreAlwaysPlannedAndVerified) {
     const Vector3d a0 = 1.9 * std::abs(u(rng)) * Vector3d(u(rng), u(rng), u(rng)).normalized();
     const auto r = request(p0, v0, a0, target);
     const auto res = planner.plan(r);
-    if (!res.ok && res.reason == plan_result_t::REASON_INFEASIBLE_START) continue;
+    if (!res.ok && res.status == mmh::PlanStatus::kInfeasibleStart) continue;
     verify(r, res, "random " + std::to_string(k));
     EXPECT_GE(res.trajectory.duration(), res.profile_duration * 0.9);
   }
@@ -195,31 +193,31 @@ TEST(FpmPlanner, BadInputsGiveAReasonAndNoTrajectory) {
       if (field == 4) r.waypoints = {Vector3d(5, bad, 1.2)};
       const auto res = planner.plan(r);
       EXPECT_FALSE(res.ok);
-      EXPECT_EQ(res.reason, plan_result_t::REASON_BAD_INPUT) << field;
+      EXPECT_EQ(res.status, mmh::PlanStatus::kBadInput) << field;
       EXPECT_TRUE(res.trajectory.empty());
     }
   }
   const auto same = planner.plan(request(p0, Vector3d::Zero(), Vector3d::Zero(), p0));
-  EXPECT_EQ(same.reason, plan_result_t::REASON_START_EQUALS_TARGET);
+  EXPECT_EQ(same.status, mmh::PlanStatus::kStartEqualsTarget);
   EXPECT_FALSE(same.ok);
   const auto fast = planner.plan(request(p0, Vector3d(3.2, 0, 0), Vector3d::Zero(), target));
-  EXPECT_EQ(fast.reason, plan_result_t::REASON_INFEASIBLE_START);
+  EXPECT_EQ(fast.status, mmh::PlanStatus::kInfeasibleStart);
   const auto hard = planner.plan(request(p0, Vector3d::Zero(), Vector3d(0, 2.5, 0), target));
-  EXPECT_EQ(hard.reason, plan_result_t::REASON_INFEASIBLE_START);
+  EXPECT_EQ(hard.status, mmh::PlanStatus::kInfeasibleStart);
   const auto speeding_up = planner.plan(request(p0, Vector3d(3, 0, 0), Vector3d(1, 0, 0), target));
-  EXPECT_EQ(speeding_up.reason, plan_result_t::REASON_INFEASIBLE_START);
+  EXPECT_EQ(speeding_up.status, mmh::PlanStatus::kInfeasibleStart);
   const auto outside =
       planner.plan(request(p0, Vector3d::Zero(), Vector3d::Zero(), Vector3d(40, 0, 1.2)));
-  EXPECT_EQ(outside.reason, plan_result_t::REASON_TARGET_OUT_OF_BOUNDS);
+  EXPECT_EQ(outside.status, mmh::PlanStatus::kTargetOutOfBounds);
   const auto too_high =
       planner.plan(request(p0, Vector3d::Zero(), Vector3d::Zero(), Vector3d(5, 0, 3.0)));
-  EXPECT_EQ(too_high.reason, plan_result_t::REASON_TARGET_OUT_OF_BOUNDS);
+  EXPECT_EQ(too_high.status, mmh::PlanStatus::kTargetOutOfBounds);
   auto wp_outside = request(p0, Vector3d::Zero(), Vector3d::Zero(), target);
   wp_outside.waypoints = {Vector3d(5, 35, 1.2)};
-  EXPECT_EQ(planner.plan(wp_outside).reason, plan_result_t::REASON_TARGET_OUT_OF_BOUNDS);
+  EXPECT_EQ(planner.plan(wp_outside).status, mmh::PlanStatus::kTargetOutOfBounds);
   auto wp_same = request(p0, Vector3d::Zero(), Vector3d::Zero(), target);
   wp_same.waypoints = {Vector3d(5, 0, 1.2), Vector3d(5, 0, 1.2)};
-  EXPECT_EQ(planner.plan(wp_same).reason, plan_result_t::REASON_BAD_INPUT);
+  EXPECT_EQ(planner.plan(wp_same).status, mmh::PlanStatus::kBadInput);
 }
 
 TEST(FpmPlanner, StartOnTheTargetButMovingComesBack) {

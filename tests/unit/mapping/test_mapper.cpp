@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "mapping_node.hpp"
 #include "mmh/common/local_map_codec.hpp"
 #include "mmh/mapping/mapper.hpp"
 #include "scan_helpers.hpp"
@@ -51,11 +52,11 @@ TEST(Mapper, KeyframesAndDeltasRebuildTheSameMap) {
     const auto r = mapper.processScan(mmh::test::inputOf(scan), kT0 + k * kFrameUs);
     ASSERT_EQ(r.error, mmh::mapping::ScanError::kNone);
     EXPECT_EQ(r.map.map_seq, static_cast<int64_t>(k + 1));
-    EXPECT_EQ(r.map.header.utime, kT0 + static_cast<int64_t>(k) * kFrameUs);
-    keyframes += r.keyframe;
+    EXPECT_EQ(r.map.utime, kT0 + static_cast<int64_t>(k) * kFrameUs);
+    keyframes += r.map.keyframe;
     moves += r.window_moved;
     std::string why;
-    ASSERT_EQ(receiver.apply(r.map, &why), Result::kApplied) << why;
+    ASSERT_EQ(receiver.apply(mmh::toLocalMap(r.map), &why), Result::kApplied) << why;
     // The receiver's window equals the sender's, cell for cell, after every message.
     ASSERT_EQ(receiver.grid().originIndex(), mapper.map().windowOrigin());
     ASSERT_EQ(receiver.grid().rawCells(), mapper.map().windowStates()) << "message " << k;
@@ -78,8 +79,8 @@ TEST(Mapper, AGapIsDetectedAndTheNextKeyframeHealsIt) {
     mapper.setVehiclePosition(scan.position);
     const auto r = mapper.processScan(mmh::test::inputOf(scan), kT0 + k * kFrameUs);
     if (k == 4) continue;  // lost on the network
-    results.push_back(receiver.apply(r.map));
-    if (r.keyframe && k > 4) {
+    results.push_back(receiver.apply(mmh::toLocalMap(r.map)));
+    if (r.map.keyframe && k > 4) {
       EXPECT_EQ(results.back(), Result::kApplied);
       EXPECT_EQ(receiver.grid().rawCells(), mapper.map().windowStates());
       break;
@@ -106,9 +107,9 @@ TEST(Mapper, LossesShorterThanTheDeltaRepeatAreBridgedExactly) {
     const auto& scan = flight.scans[k];
     mapper.setVehiclePosition(scan.position);
     const auto r = mapper.processScan(mmh::test::inputOf(scan), kT0 + k * kFrameUs);
-    EXPECT_EQ(r.keyframe, k == 0 || k == 15) << k;
+    EXPECT_EQ(r.map.keyframe, k == 0 || k == 15) << k;
     if (std::find(lost.begin(), lost.end(), k) != lost.end()) continue;
-    const Result applied = receiver.apply(r.map);
+    const Result applied = receiver.apply(mmh::toLocalMap(r.map));
     results.emplace_back(k, applied);
     if (applied == Result::kApplied) {
       // Exactly the sender's window, also right after the losses.
@@ -136,8 +137,8 @@ TEST(Mapper, DeltasInSteadyFlightAreSmall) {
     const auto& scan = flight.scans[k];
     mapper.setVehiclePosition(scan.position);
     const auto r = mapper.processScan(mmh::test::inputOf(scan), kT0 + k * kFrameUs);
-    const size_t bytes = static_cast<size_t>(r.map.getEncodedSize());
-    if (r.keyframe)
+    const size_t bytes = static_cast<size_t>(mmh::toLocalMap(r.map).getEncodedSize());
+    if (r.map.keyframe)
       keyframe = std::max(keyframe, bytes);
     else if (k > 2)
       max_delta = std::max(max_delta, bytes);

@@ -1,4 +1,4 @@
-// Shortest paths among discs against analytic answers, and the time bound of BENCHMARK.md.
+// Shortest paths among discs against analytic answers, and the time bound of docs/benchmark.md.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -15,7 +15,7 @@
 #include "som_test_worlds.hpp"
 
 using Eigen::Vector3d;
-using mmh::som::PlanStatus;
+using mmh::PlanStatus;
 
 namespace {
 

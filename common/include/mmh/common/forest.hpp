@@ -1,4 +1,4 @@
-// Random forest worlds of the benchmark protocol (BENCHMARK.md): vertical cylinders of random
+// Random forest worlds of the benchmark protocol (docs/benchmark.md): vertical cylinders of random
 // diameter at a given density, with the start and goal kept clear. Used by the simulator, the
 // planner benchmarks and tests.
 #pragma once

@@ -31,7 +31,8 @@ class LcmError : public std::runtime_error {
 // Throws LcmError with a hint when LCM is not usable (no multicast route, bad URL).
 std::unique_ptr<lcm::LCM> openLcm(const std::string& url);
 
-// Base channel names (DESIGN.md section 1); the prefix is prepended by ServiceContext::channel.
+// Base channel names (docs/architecture.md, "Processes and channels"); the prefix is prepended by
+// ServiceContext::channel.
 namespace channels {
 inline constexpr const char* kOdometry = "ODOMETRY";
 inline constexpr const char* kPointcloud = "POINTCLOUD";

@@ -1,6 +1,6 @@
 // Conversions between the project's Eigen/Trajectory types and the LCM messages. Messages with
 // nested arrays are filled only through these checked helpers (lcm-gen's encoder does not check
-// inner sizes, see DESIGN.md section 6).
+// inner sizes, see docs/architecture.md, "Message types").
 #pragma once
 
 #include <Eigen/Core>

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "mmh/common/plan_status.hpp"
 #include "mmh/common/trajectory.hpp"
 #include "mmh/common/voxel_grid.hpp"
 #include "mmh/eam/bspline_cost.hpp"
@@ -25,21 +26,6 @@ struct PlanRequest {
   // Rest of the committed trajectory from the start time (initial guess); may be empty.
   Trajectory reference;
 };
-
-enum class FailReason {
-  kNone,
-  kBadInput,           // NaN/Inf, broken reference
-  kNoMap,              // the grid is empty
-  kStartInObstacle,    // start inside an occupied cell
-  kTargetInObstacle,   // target inside the inflated obstacles
-  kTargetOutOfBounds,  // target outside the geofence
-  kInfeasibleStart,    // start speed / acceleration beyond the tolerated limits
-  kStartEqualsTarget,  // at rest on the target already
-  kNoPath,             // A* found no way around a colliding stretch
-  kOptimizer,          // optimiser error, or collisions left after the last round
-  kVerify,             // the result failed the independent verification
-};
-const char* toString(FailReason reason);
 
 struct PlanStats {
   int rounds = 0;       // optimisations run
@@ -58,7 +44,7 @@ struct PlanStats {
 
 struct PlanResult {
   bool ok = false;
-  FailReason reason = FailReason::kNone;
+  PlanStatus reason = PlanStatus::kOk;
   std::string detail;
   bool narrow = false;  // N: the narrow-space weights were selected
   Trajectory trajectory;

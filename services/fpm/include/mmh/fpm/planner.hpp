@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "mmh/common/plan_status.hpp"
 #include "mmh/common/trajectory.hpp"
 #include "mmh/fpm/fpm_params.hpp"
 #include "mmh/fpm/spatio_temporal_optimizer.hpp"
@@ -22,7 +23,7 @@ struct Request {
 
 struct Result {
   bool ok = false;
-  int16_t reason = 0;  // plan_result_t::REASON_* (REASON_NONE when ok)
+  PlanStatus status = PlanStatus::kOk;  // kOk when ok
   std::string detail;
   Trajectory trajectory;  // only when ok
   CostBreakdown cost;
@@ -41,7 +42,7 @@ class Planner {
   Result plan(const Request& request) const;
 
  private:
-  // Checks the request; fills reason and detail and returns false if it cannot be planned.
+  // Checks the request; fills status and detail and returns false if it cannot be planned.
   bool validate(const Request& request, Result& result) const;
   // One complete attempt with the guess and the penalties `margin_ratio` below the limits; true
   // (and `out` filled) when a candidate passes the exact limit check.

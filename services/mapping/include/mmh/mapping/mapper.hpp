@@ -1,5 +1,6 @@
 // The mapping pipeline without LCM: scan -> filter (scan_filter.hpp) -> window placement and
-// insertion into the OccupancyMap -> the LOCAL_MAP message, a keyframe (whole window) at least
+// insertion into the OccupancyMap -> the content of the LOCAL_MAP message (MapUpdate; the node
+// encodes it, mapping_node.hpp toLocalMap), a keyframe (whole window) at least
 // every keyframe_period_s and a delta otherwise: the cells changed since the previous message,
 // and those of the delta_repeat - 1 deltas before it, so that a lost message costs nothing.
 #pragma once
@@ -10,12 +11,25 @@
 #include <string>
 #include <vector>
 
-#include "mmh/local_map_t.hpp"
+#include "mmh/common/local_map_codec.hpp"
 #include "mmh/mapping/mapping_params.hpp"
 #include "mmh/mapping/occupancy_map.hpp"
 #include "mmh/mapping/scan_filter.hpp"
 
 namespace mmh::mapping {
+
+// One LOCAL_MAP's content without the wire type.
+struct MapUpdate {
+  bool keyframe = false;
+  int64_t map_seq = 0;
+  int64_t base_seq = 0;  // keyframe: 0; delta: the map it applies to
+  int64_t utime = 0;     // the scan's time
+  double resolution_m = 0.0;
+  Eigen::Vector3i origin_index = Eigen::Vector3i::Zero();  // window cell (0, 0, 0)
+  Eigen::Vector3i size = Eigen::Vector3i::Zero();          // window size in voxels
+  // Sorted by linear index: keyframe, every known cell; delta, the changed cells (current state).
+  std::vector<CellChange> cells;
+};
 
 class Mapper {
  public:
@@ -26,8 +40,7 @@ class Mapper {
     std::string reason;
     FilterStats filter;
     InsertStats insert;
-    local_map_t map;  // header.utime = the scan's time; source and seq are the publisher's
-    bool keyframe = false;
+    MapUpdate map;
     bool window_moved = false;
   };
 
@@ -51,7 +64,7 @@ class Mapper {
   FilteredScan filtered_;
   Eigen::Vector3d vehicle_ = Eigen::Vector3d::Zero();
   bool have_vehicle_ = false;
-  local_map_t nextDelta();
+  MapUpdate nextDelta();
 
   int64_t map_seq_ = 0;
   int64_t last_keyframe_seq_ = 0;

@@ -1,4 +1,4 @@
-// Ground-truth mission metrics of BENCHMARK.md, accumulated step by step from what the vehicle
+// Ground-truth mission metrics of docs/benchmark.md, accumulated step by step from what the vehicle
 // actually flew: success (goal within tolerance, no collision), flight time from the first
 // committed trajectory to arrival, arc length, jerk energy (exact per flown trajectory part),
 // smallest clearance, and the time bound on the shortest collision-free path.

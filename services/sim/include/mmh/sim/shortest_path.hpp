@@ -1,5 +1,5 @@
 // Shortest collision-free path lengths, known only to the simulator, and the time bound of
-// BENCHMARK.md computed from them: rest to rest at v_max / a_max along the shortest path.
+// docs/benchmark.md computed from them: rest to rest at v_max / a_max along the shortest path.
 #pragma once
 
 #include <Eigen/Core>
@@ -33,7 +33,8 @@ double gridShortestPath(const VoxelGrid& inflated_grid, const Eigen::Vector3d& a
 
 // Minimum time to travel `length` from rest to rest with |v| <= vmax and |a| <= amax along a
 // path: length/vmax + vmax/amax when the vehicle reaches vmax, 2 sqrt(length/amax) otherwise.
-// 39.9 m at 3 m/s and 2 m/s^2 gives 14.8 s (BENCHMARK.md). Negative length gives a negative time.
+// 39.9 m at 3 m/s and 2 m/s^2 gives 14.8 s (docs/benchmark.md). Negative length gives a negative
+// time.
 double restToRestTime(double length, double vmax, double amax);
 
 }  // namespace mmh::sim

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "mmh/common/grid_astar.hpp"
+#include "mmh/common/plan_status.hpp"
 #include "mmh/common/trajectory.hpp"
 #include "mmh/common/voxel_grid.hpp"
 #include "mmh/som/corridor.hpp"
@@ -16,22 +17,6 @@
 #include "mmh/som/verification.hpp"
 
 namespace mmh::som {
-
-enum class PlanStatus {
-  kOk,
-  kBadInput,           // NaN/Inf, start outside the window or the geofence
-  kNoMap,              // empty grid
-  kStartInObstacle,    // start in an occupied voxel
-  kTargetInObstacle,   // target inside the inflated obstacles
-  kTargetOutOfBounds,  // target outside the geofence or the map window
-  kInfeasibleStart,    // start speed or acceleration above the limits
-  kStartEqualsTarget,  // at rest on the target already: nothing to plan
-  kNoPath,             // A* found no path (or ran out of its node budget)
-  kCorridor,           // the safe flight corridor could not be built
-  kOptimizer,          // the optimiser produced no usable result
-  kVerify,             // the result failed the independent verification
-};
-const char* toString(PlanStatus status);
 
 // Time of one step of a plan() call, microseconds: wall clock, and CPU time of the calling
 // thread (what the step costs when the machine is shared).
@@ -80,7 +65,7 @@ class Planner {
 };
 
 // Lower bound on the duration of a rest-to-rest flight along a path of this length under the
-// limits (BENCHMARK.md): L / v + v / a, or 2 sqrt(L / a) when v_max is not reached.
+// limits (docs/benchmark.md): L / v + v / a, or 2 sqrt(L / a) when v_max is not reached.
 double restToRestTimeBound(double length_m, double max_vel_mps, double max_acc_mps2);
 
 }  // namespace mmh::som
