@@ -40,7 +40,7 @@ struct EamParams {
   // Only control points within this time of a colliding stretch are optimised (EAM is a local
   // re-optimisation; the rest of the trajectory keeps its shape, and the problem stays small
   // and well conditioned).
-  double window_margin_s = 0.5;
+  double window_margin_s = 2.5;
   // Start the optimisation from the A* guide path on each colliding stretch (control points
   // placed along it) instead of from the colliding guess.
   bool guide_warm_start = true;
