@@ -20,6 +20,7 @@ packages=(
   libeigen3-dev liboctomap-dev libpcl-dev libnlopt-cxx-dev libyaml-cpp-dev
   libgtest-dev libbenchmark-dev nlohmann-json3-dev default-jdk-headless default-jre
   iproute2 util-linux procps python3 python3-matplotlib python3-numpy python3-yaml openssh-client
+  openssh-server ansible python3-apt lintian fakeroot dpkg-dev file
   xvfb xauth x11-utils imagemagick clang clang-format libclang-rt-14-dev
   libwebsocketpp-dev libasio-dev chromium
 )

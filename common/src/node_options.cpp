@@ -1,6 +1,8 @@
 #include "mmh/common/node_options.hpp"
 
 #include <cstdlib>
+#include <filesystem>
+#include <system_error>
 
 #include "mmh/common/config_validation.hpp"
 #include "mmh/common/log.hpp"
@@ -11,9 +13,22 @@
 
 namespace mmh {
 
+// Without $MMH_CONFIG: an executable installed in MMH_INSTALL_BINDIR (/usr/bin from the Debian
+// package) reads the installed configuration (/etc/mmh/mmh.yaml), one of a build tree the
+// source tree's deploy/config/default.yaml.
+static std::string builtinConfigPath() {
+#if defined(MMH_INSTALL_BINDIR) && defined(MMH_INSTALLED_CONFIG)
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec && exe.parent_path() == std::filesystem::path(MMH_INSTALL_BINDIR))
+    return MMH_INSTALLED_CONFIG;
+#endif
+  return MMH_DEFAULT_CONFIG;
+}
+
 std::string defaultConfigPath() {
   const char* env = std::getenv("MMH_CONFIG");
-  return env && *env ? env : MMH_DEFAULT_CONFIG;
+  return env && *env ? env : builtinConfigPath();
 }
 
 void addNodeOptions(ArgParser& parser, NodeOptions* options) {
@@ -22,7 +37,7 @@ void addNodeOptions(ArgParser& parser, NodeOptions* options) {
   parser.addString("--prefix", &options->prefix, "channel prefix, e.g. UAV1_");
   parser.addString(
       "--config", &options->config_path,
-      "configuration file (default: $MMH_CONFIG or " + std::string(MMH_DEFAULT_CONFIG) + ")");
+      "configuration file (default: $MMH_CONFIG or " + builtinConfigPath() + ")");
   parser.addString("--log-level", &options->log_level, "debug, info, warn or error");
 }
 

@@ -8,22 +8,36 @@
 #
 # options (each also from the environment):
 #   --config FILE     MMH_CONFIG         configuration (default: deploy/config/default.yaml)
+#                                        (installed from the package: /etc/mmh/mmh.yaml)
 #   --lcm-url URL     LCM_DEFAULT_URL    LCM URL (default: LCM's udpm://239.255.76.67:7667?ttl=0)
 #   --prefix P        MMH_PREFIX         channel prefix, e.g. UAV1_
-#   --run-dir DIR     MMH_RUN_DIR        where NAME.log and NAME.pid go (default: $root/run)
-#   --bin-dir DIR     MMH_BIN_DIR        where the executables are (default: $root/build/bin)
+#   --run-dir DIR     MMH_RUN_DIR        where NAME.log and NAME.pid go (default: $root/run;
+#                                        package: /var/lib/mmh)
+#   --bin-dir DIR     MMH_BIN_DIR        where the executables are (default: $root/build/bin;
+#                                        package: /usr/bin)
 #   --respawn         MMH_RESPAWN=1      restart the service whenever it exits (until stopped)
 set -euo pipefail
-root=$(cd "$(dirname "$0")/../.." && pwd)
+here=$(cd "$(dirname "$0")" && pwd)
+# In a checkout: its build and configuration. Installed from the Debian package
+# (/usr/lib/mmh-planner/launch), layout.sh next to this script names the package's paths.
+root=$(cd "$here/../.." && pwd)
+mmh_bin_dir=$root/build/bin
+mmh_config=$root/deploy/config/default.yaml
+mmh_run_dir=$root/run
+mmh_record=$root/deploy/record.sh
+if [ -f "$here/layout.sh" ]; then
+  # shellcheck source=../package/layout.sh
+  . "$here/layout.sh"
+fi
 name=${1:?usage: service.sh NAME start|stop|restart|status|run [options]}
 action=${2:?usage: service.sh NAME start|stop|restart|status|run [options]}
 shift 2
 
-config=${MMH_CONFIG:-$root/deploy/config/default.yaml}
+config=${MMH_CONFIG:-$mmh_config}
 url=${LCM_DEFAULT_URL:-}
 prefix=${MMH_PREFIX:-}
-run_dir=${MMH_RUN_DIR:-$root/run}
-bin_dir=${MMH_BIN_DIR:-$root/build/bin}
+run_dir=${MMH_RUN_DIR:-$mmh_run_dir}
+bin_dir=${MMH_BIN_DIR:-$mmh_bin_dir}
 respawn=${MMH_RESPAWN:-0}
 extra=()
 while [ $# -gt 0 ]; do
@@ -45,7 +59,7 @@ pid_file=$run_dir/$tag.pid
 log_file=$run_dir/$tag.log
 stop_file=$run_dir/$tag.stopping
 if [ "$name" = mmh-logger ]; then
-  exe=$root/deploy/record.sh
+  exe=$mmh_record
   args=("${MMH_RECORD_FILE:-$run_dir/${prefix}flight.lcm}" --quiet)
   [ -n "$prefix" ] && args+=(--channel "^${prefix}.*")
 else
@@ -67,7 +81,7 @@ case "$action" in
     ;;
   start)
     if pid=$(running_pid); then echo "$tag already running (pid $pid)"; exit 0; fi
-    [ -x "$exe" ] || { echo "$tag: $exe not found; build first (deploy/setup.sh)" >&2; exit 1; }
+    [ -x "$exe" ] || { echo "$tag: $exe not found; build first (deploy/setup.sh) or install the package" >&2; exit 1; }
     mkdir -p "$run_dir"
     rm -f "$stop_file"
     if [ "$respawn" = 1 ]; then

@@ -1,15 +1,22 @@
 #!/usr/bin/env bash
 # Two vehicles on one network (udpm://, ttl=0, private network namespace), each started by
-# deploy/deploy.sh from its own manifest with its own prefix (UAV1_, UAV2_), fly at once in two
-# lanes 8 m apart: both reach their goals, every channel carries one of the two prefixes, and
+# deploy/launch/stack.sh with its own prefix (UAV1_, UAV2_; on several machines the groups of
+# deploy/ansible/inventory/two-vehicles.yml), fly at once in two lanes 8 m apart: both reach
+# their goals, every channel carries one of the two prefixes, and
 # each arbiter's decisions and each vehicle's path stay in its own lane (no crosstalk).
 set -euo pipefail
 build=$1
 root=$(cd "$(dirname "$0")/../../.." && pwd)
 if [ "${MMH_IN_NETNS:-0}" != 1 ]; then exec "$root/tests/integration/netns.sh" bash "$0" "$@"; fi
 out=$(mktemp -d)
+stack() {  # stack VEHICLE start|stop [options]
+  local v=$1 action=$2
+  shift 2
+  "$root/deploy/launch/stack.sh" "$action" --prefix "UAV${v}_" --run-dir "$out/uav$v" \
+    --bin-dir "$build/bin" "$@"
+}
 cleanup() {
-  for v in 1 2; do "$root/deploy/deploy.sh" "$out/uav$v.yaml" stop >/dev/null 2>&1 || true; done
+  for v in 1 2; do stack $v stop >/dev/null 2>&1 || true; done
   MMH_RUN_DIR=$out/all "$root/deploy/launch/logger.sh" stop >/dev/null 2>&1 || true
 }
 trap 'cleanup; rm -rf "$out"' EXIT
@@ -20,33 +27,16 @@ fail() {
 }
 
 lane_y=(0 0 8)  # vehicle 1: y = 0, vehicle 2: y = 8
-for v in 1 2; do
-  y=${lane_y[$v]}
-  cat > "$out/uav$v.yaml" <<YAML
-prefix: UAV${v}_
-root: $root
-bin_dir: $build/bin
-run_dir: $out/uav$v
-hosts:
-  local:
-    services:
-      - mapping
-      - awareness
-      - fpm
-      - som
-      - eam
-      - arbiter
-      - sim: --world forest --density 0.05 --seed $v --start=-6,$y,1.2 --goal 6,$y,1.2 --realtime
-      - goal: --goal 6,$y,1.2
-YAML
-done
 
 # Everything on the network, whatever its prefix.
 MMH_RUN_DIR=$out/all MMH_RECORD_FILE=$out/all/everything.lcm "$root/deploy/launch/logger.sh" start
 "$build/bin/mmh-mission-report" --prefix UAV1_ --timeout 90 > "$out/report1.txt" & r1=$!
 "$build/bin/mmh-mission-report" --prefix UAV2_ --timeout 90 > "$out/report2.txt" & r2=$!
-"$root/deploy/deploy.sh" "$out/uav1.yaml" start || fail "deploy.sh start UAV1_"
-"$root/deploy/deploy.sh" "$out/uav2.yaml" start || fail "deploy.sh start UAV2_"
+for v in 1 2; do
+  y=${lane_y[$v]}
+  stack $v start --sim-args "--world forest --density 0.05 --seed $v --start=-6,$y,1.2 --goal 6,$y,1.2 --realtime" \
+    --goal "6,$y,1.2" || fail "stack.sh start UAV${v}_"
+done
 s1=0; s2=0
 wait $r1 || s1=$?
 wait $r2 || s2=$?
