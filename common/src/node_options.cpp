@@ -35,9 +35,8 @@ void addNodeOptions(ArgParser& parser, NodeOptions* options) {
   parser.addString("--lcm-url", &options->lcm_url,
                    "LCM URL (default: $LCM_DEFAULT_URL, else udpm://239.255.76.67:7667?ttl=0)");
   parser.addString("--prefix", &options->prefix, "channel prefix, e.g. UAV1_");
-  parser.addString(
-      "--config", &options->config_path,
-      "configuration file (default: $MMH_CONFIG or " + builtinConfigPath() + ")");
+  parser.addString("--config", &options->config_path,
+                   "configuration file (default: $MMH_CONFIG or " + builtinConfigPath() + ")");
   parser.addString("--log-level", &options->log_level, "debug, info, warn or error");
 }
 

@@ -42,6 +42,6 @@ grep -q "vehicle.no_such_key" "$out/stack.err" || fail "mmh-stack's error does n
 
 json=$("$build/bin/mmh-stack" --density 0.05 --seed 7 --log-level error --json) || true
 echo "$json"
-echo "$json" | grep -qE '"wall_time_s": [0-9.e+-]+, "stop_causes": \{[^}]*\}, "max_calls_without_commit": [0-9]+, "longest_no_progress_s": [0-9.e+-]+\}$' \
+echo "$json" | grep -qE '"wall_time_s": [0-9.e+-]+, "stop_causes": \{[^}]*\}, "max_calls_without_commit": [0-9]+, "longest_no_progress_s": [0-9.e+-]+, "trajectory_digest": "[0-9a-f]+"\}$' \
   || fail "mmh-stack --json does not end with the census fields"
 echo PASS
