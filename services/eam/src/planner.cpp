@@ -317,177 +317,203 @@ Planner::RoundsOutcome Planner::runRounds(const VoxelGrid& grid, const PlanReque
     });
     bool feasibility_round = false;
     if (stretches.empty()) {
-      const double ratio = limitRatio(at.spline, P);
-      if (ratio <= kRefineAbove) {
+      const LimitAction action = limitAction(at, last_free);
+      if (action == LimitAction::kAccept) {
         outcome = RoundsOutcome::kCollisionFree;
         break;
       }
-      // Re-timing slows the whole curve but keeps the start state, so it cannot remove an
-      // excess that the start forces (e.g. a swerve at speed right after it): when it stalls,
-      // or may not go on, reshape the curve there with a stronger feasibility term instead.
-      const bool stalled =
-          at.has_refine_base && ratio > 1.0 + kRefineProgress * (at.ratio_before_refine - 1.0);
-      const int margin = static_cast<int>(std::ceil(P.window_margin_s / at.spline.knotSpan()));
-      if ((stalled || at.refines >= P.max_refine_rounds) &&
-          at.feasibility_rounds < kMaxFeasibilityRounds && at.round < P.max_rebound_rounds &&
-          freeAroundLimitExcess(at.spline, P, margin, kFirstFree, last_free, at.free_mask)) {
-        feasibility_round = true;
-        ++at.feasibility_rounds;
-        at.feasibility_boost *= kFeasibilityBoost;
-        if (trace_) trace_("feasibility round: limit ratio " + std::to_string(ratio));
-      } else if (at.refines >= P.max_refine_rounds) {
-        outcome = RoundsOutcome::kCollisionFree;
-        break;
+      if (action == LimitAction::kRetime) {
+        retimeFromBase(req, at, r);
+        continue;  // check collisions again with the new start
       }
-    }
-    if (stretches.empty() && !feasibility_round) {
-      const double ratio = limitRatio(at.spline, P);
-      at.ratio_before_refine = ratio;
-      // Each slow-down sheds speed at the start within a blend sized for its own ratio; applied
-      // one after another to the same curve, the blends add their decelerations up (a moving
-      // start then ends far over a_max after a few of them). Re-time the curve from before the
-      // first of them with the product of the ratios instead: one blend, sized for the total.
-      if (!at.has_refine_base) {
-        at.has_refine_base = true;
-        at.refine_base = at.spline;
-        at.refine_base_pairs = at.pairs;
-        at.refine_base_free = at.free_mask;
-        at.refine_total = 1.0;
-      }
-      at.refine_total *= ratio;
-      at.spline = at.refine_base;
-      at.pairs = at.refine_base_pairs;
-      at.free_mask = at.refine_base_free;
-      slowDown(at.spline, at.pairs, at.free_mask, at.refine_total, req.start, P.max_acc_mps2);
-      ++at.refines;
-      ++r.stats.refines;
-      if (trace_) trace_("refine: knot span x " + std::to_string(at.refine_total * kRefineMargin));
-      continue;  // check collisions again with the new start
+      feasibility_round = true;
     }
     if (at.round >= P.max_rebound_rounds) break;
-    if (!feasibility_round && at.round > 0 && !at.retimed_while_colliding &&
-        at.refines < P.max_refine_rounds) {
-      const double ratio = limitRatio(at.spline, P);
-      if (ratio > kRefineWhileColliding) {
-        slowDown(at.spline, at.pairs, at.free_mask, ratio, req.start, P.max_acc_mps2);
-        at.has_refine_base = false;
-        at.retimed_while_colliding = true;
-        ++at.refines;
-        ++r.stats.refines;
-        if (trace_) trace_("refine while colliding: x " + std::to_string(ratio * kRefineMargin));
-        continue;
-      }
-    }
-
-    // A restart takes one guide around all collisions at once, avoiding slots from the start.
-    const std::vector<CollisionStretch> groups =
-        mergeStretches(stretches, at.restart && at.round == 0 ? 1e9 : P.merge_gap_s);
-    // A restart wants a different, roomier way: slots avoided from the first search and twice
-    // as wide, and twice the clearance from the anchor planes.
-    const bool avoid_slots = at.restart && at.round == 0;
-    const double slot_width = (at.restart ? 2.0 : 1.0) * P.astar_slot_width_m;
-    const double clearance = (at.restart ? 2.0 : 1.0) * P.clearance_m;
-    int added = 0;
-    struct GuideSpan {
-      double t0, t1;
-      size_t index;  // into r.guide_paths
-    };
-    std::vector<GuideSpan> round_guides;
-    for (const CollisionStretch& s : groups) {
-      const Eigen::Vector3d goal = s.after.cwiseMax(P.geofence_min).cwiseMin(P.geofence_max);
-      const Eigen::Vector3d from = s.before.cwiseMax(P.geofence_min).cwiseMin(P.geofence_max);
-      double z_lo = std::min(from.z(), goal.z()), z_hi = std::max(from.z(), goal.z());
-      for (const CurveSample& b : s.blocked) {
-        z_lo = std::min(z_lo, b.point.z());
-        z_hi = std::max(z_hi, b.point.z());
-      }
-      const AStarResult path =
-          guides_.find(grid, from, goal, z_lo, z_hi, avoid_slots, slot_width, &guide_stats);
-      if (!path.ok()) {
-        if (at.round == 0 && !at.restart) {
-          outcome = RoundsOutcome::kNoPath;
-          r.detail = std::string("A* around a colliding stretch: ") + toString(path.status);
-          break;
-        }
-        continue;  // keep the pairs made so far; later rounds or the verification decide
-      }
-      // N: the narrow-space test of the paper on the guide path. Once narrow, the request keeps
-      // the narrow weights.
-      if (!r.narrow && isPathNarrow(grid, path.path, P.narrow_probe_dist_m)) r.narrow = true;
-      if (at.round == 0 && P.guide_warm_start) {
-        warmStartFromGuide(path.path, s.t_before, s.t_after, kFirstFree, last_free, at.spline);
-      }
-      added +=
-          addAnchorPairs(s, path.path, at.spline, grid, kFirstFree, last_free, clearance, at.pairs);
-      r.guide_paths.push_back(path.path);
-      round_guides.push_back({s.t_before, s.t_after, r.guide_paths.size() - 1});
-      const int margin = static_cast<int>(std::ceil(P.window_margin_s / at.spline.knotSpan()));
-      const int lo = std::max(kFirstFree, s.blocked.front().segment - margin);
-      const int hi = std::min(last_free, s.blocked.back().segment + 3 + margin);
-      for (int i = lo; i <= hi; ++i) at.free_mask[i] = 1;
-    }
-    if (outcome == RoundsOutcome::kNoPath) break;
-    if (at.round == 0 && P.guide_warm_start && !round_guides.empty()) {
-      // The curve through the warm-started control points cuts the corners of the guide, which
-      // hugs the obstacles: give those grazes their pairs now (from the same guides) rather
-      // than in another round.
-      const std::vector<CollisionStretch> grazes = timed(&r.stats.check_us, [&] {
-        return findCollisionStretches(at.spline, grid, P.start_escape_radius_m, at.check_step,
-                                      at.escape_min_distance);
-      });
-      for (const CollisionStretch& g : grazes) {
-        for (const GuideSpan& span : round_guides) {
-          if (g.blocked.back().t < span.t0 || g.blocked.front().t > span.t1) continue;
-          added += addAnchorPairs(g, r.guide_paths[span.index], at.spline, grid, kFirstFree,
-                                  last_free, clearance, at.pairs);
-          break;
-        }
-      }
-    }
-    if (added == 0 && at.round > 0 && !feasibility_round) at.boost *= kCollisionBoost;
-    std::vector<int> free_points;
-    for (int i = kFirstFree; i <= last_free; ++i) {
-      if (at.free_mask[i]) free_points.push_back(i);
-    }
-    if (free_points.empty()) break;
-
-    CostWeights w;
-    w.smooth = r.narrow ? P.lambda_smooth_narrow : P.lambda_smooth_open;
-    w.collision = at.boost * (r.narrow ? P.lambda_collision_narrow : P.lambda_collision_open);
-    w.feasibility = at.feasibility_boost * P.lambda_feasibility;
-    r.weights = w;
-    const BsplineCost cost(settings, w, &at.pairs);
-    const bool keep_altitude =
-        horizontalProblem(at.pairs, at.spline.controlPoints(), free_points, P);
-    const OptimizeResult opt = timed(&r.stats.optimize_us, [&] {
-      return optimizeControlPoints(at.spline, cost, free_points, P.max_iterations,
-                                   P.optimizer_ftol_rel, keep_altitude);
-    });
-    at.has_refine_base = false;  // the curve changed: later re-timings start from it
-    at.retimed_while_colliding = false;
-    ++at.round;
-    ++r.stats.rounds;
-    r.stats.evaluations += opt.evaluations;
-    if (!opt.ok) {
-      r.detail = opt.error;
-      outcome = RoundsOutcome::kOptimizerError;
+    if (!feasibility_round && retimeWhileColliding(req, at, r)) continue;
+    const std::optional<RoundsOutcome> end =
+        reboundRound(grid, stretches, feasibility_round, last_free, settings, guide_stats, at, r);
+    if (end) {
+      outcome = *end;
       break;
-    }
-    r.terms = opt.terms;
-    if (trace_) {
-      trace_("round " + std::to_string(at.round) + ": stretches " +
-             std::to_string(stretches.size()) + ", pairs added " + std::to_string(added) + ", dt " +
-             std::to_string(at.spline.knotSpan()) + (r.narrow ? ", narrow" : ", open") +
-             ", evals " + std::to_string(opt.evaluations) + ", Js " +
-             std::to_string(opt.terms.smooth) + ", Jc " + std::to_string(opt.terms.collision) +
-             ", Jf " + std::to_string(opt.terms.feasibility) + (keep_altitude ? ", xy" : ", xyz") +
-             " " + opt.error);
     }
   }
   r.stats.astar_calls += guide_stats.calls;
   r.stats.astar_expansions += guide_stats.expansions;
   r.stats.astar_us += guide_stats.us;
   return outcome;
+}
+
+Planner::LimitAction Planner::limitAction(Attempt& at, int last_free) {
+  const EamParams& P = params_;
+  const double ratio = limitRatio(at.spline, P);
+  if (ratio <= kRefineAbove) return LimitAction::kAccept;
+  // Re-timing slows the whole curve but keeps the start state, so it cannot remove an excess
+  // that the start forces (e.g. a swerve at speed right after it): when it stalls, or may not go
+  // on, reshape the curve there with a stronger feasibility term instead.
+  const bool stalled =
+      at.has_refine_base && ratio > 1.0 + kRefineProgress * (at.ratio_before_refine - 1.0);
+  const int margin = static_cast<int>(std::ceil(P.window_margin_s / at.spline.knotSpan()));
+  if ((stalled || at.refines >= P.max_refine_rounds) &&
+      at.feasibility_rounds < kMaxFeasibilityRounds && at.round < P.max_rebound_rounds &&
+      freeAroundLimitExcess(at.spline, P, margin, kFirstFree, last_free, at.free_mask)) {
+    ++at.feasibility_rounds;
+    at.feasibility_boost *= kFeasibilityBoost;
+    if (trace_) trace_("feasibility round: limit ratio " + std::to_string(ratio));
+    return LimitAction::kReshape;
+  }
+  if (at.refines >= P.max_refine_rounds) return LimitAction::kAccept;
+  return LimitAction::kRetime;
+}
+
+void Planner::retimeFromBase(const PlanRequest& req, Attempt& at, PlanResult& r) {
+  const EamParams& P = params_;
+  const double ratio = limitRatio(at.spline, P);
+  at.ratio_before_refine = ratio;
+  // Each slow-down sheds speed at the start within a blend sized for its own ratio; applied one
+  // after another to the same curve, the blends add their decelerations up (a moving start then
+  // ends far over a_max after a few of them). Re-time the curve from before the first of them
+  // with the product of the ratios instead: one blend, sized for the total.
+  if (!at.has_refine_base) {
+    at.has_refine_base = true;
+    at.refine_base = at.spline;
+    at.refine_base_pairs = at.pairs;
+    at.refine_base_free = at.free_mask;
+    at.refine_total = 1.0;
+  }
+  at.refine_total *= ratio;
+  at.spline = at.refine_base;
+  at.pairs = at.refine_base_pairs;
+  at.free_mask = at.refine_base_free;
+  slowDown(at.spline, at.pairs, at.free_mask, at.refine_total, req.start, P.max_acc_mps2);
+  ++at.refines;
+  ++r.stats.refines;
+  if (trace_) trace_("refine: knot span x " + std::to_string(at.refine_total * kRefineMargin));
+}
+
+bool Planner::retimeWhileColliding(const PlanRequest& req, Attempt& at, PlanResult& r) {
+  const EamParams& P = params_;
+  if (at.round == 0 || at.retimed_while_colliding || at.refines >= P.max_refine_rounds) {
+    return false;
+  }
+  const double ratio = limitRatio(at.spline, P);
+  if (ratio <= kRefineWhileColliding) return false;
+  slowDown(at.spline, at.pairs, at.free_mask, ratio, req.start, P.max_acc_mps2);
+  at.has_refine_base = false;
+  at.retimed_while_colliding = true;
+  ++at.refines;
+  ++r.stats.refines;
+  if (trace_) trace_("refine while colliding: x " + std::to_string(ratio * kRefineMargin));
+  return true;
+}
+
+std::optional<Planner::RoundsOutcome> Planner::reboundRound(
+    const VoxelGrid& grid, const std::vector<CollisionStretch>& stretches, bool feasibility_round,
+    int last_free, const CostSettings& settings, GuideStats& guide_stats, Attempt& at,
+    PlanResult& r) {
+  const EamParams& P = params_;
+  // A restart takes one guide around all collisions at once, avoiding slots from the start.
+  const std::vector<CollisionStretch> groups =
+      mergeStretches(stretches, at.restart && at.round == 0 ? 1e9 : P.merge_gap_s);
+  // A restart wants a different, roomier way: slots avoided from the first search and twice
+  // as wide, and twice the clearance from the anchor planes.
+  const bool avoid_slots = at.restart && at.round == 0;
+  const double slot_width = (at.restart ? 2.0 : 1.0) * P.astar_slot_width_m;
+  const double clearance = (at.restart ? 2.0 : 1.0) * P.clearance_m;
+  int added = 0;
+  struct GuideSpan {
+    double t0, t1;
+    size_t index;  // into r.guide_paths
+  };
+  std::vector<GuideSpan> round_guides;
+  bool no_path = false;
+  for (const CollisionStretch& s : groups) {
+    const Eigen::Vector3d goal = s.after.cwiseMax(P.geofence_min).cwiseMin(P.geofence_max);
+    const Eigen::Vector3d from = s.before.cwiseMax(P.geofence_min).cwiseMin(P.geofence_max);
+    double z_lo = std::min(from.z(), goal.z()), z_hi = std::max(from.z(), goal.z());
+    for (const CurveSample& b : s.blocked) {
+      z_lo = std::min(z_lo, b.point.z());
+      z_hi = std::max(z_hi, b.point.z());
+    }
+    const AStarResult path =
+        guides_.find(grid, from, goal, z_lo, z_hi, avoid_slots, slot_width, &guide_stats);
+    if (!path.ok()) {
+      if (at.round == 0 && !at.restart) {
+        no_path = true;
+        r.detail = std::string("A* around a colliding stretch: ") + toString(path.status);
+        break;
+      }
+      continue;  // keep the pairs made so far; later rounds or the verification decide
+    }
+    // N: the narrow-space test of the paper on the guide path. Once narrow, the request keeps
+    // the narrow weights.
+    if (!r.narrow && isPathNarrow(grid, path.path, P.narrow_probe_dist_m)) r.narrow = true;
+    if (at.round == 0 && P.guide_warm_start) {
+      warmStartFromGuide(path.path, s.t_before, s.t_after, kFirstFree, last_free, at.spline);
+    }
+    added +=
+        addAnchorPairs(s, path.path, at.spline, grid, kFirstFree, last_free, clearance, at.pairs);
+    r.guide_paths.push_back(path.path);
+    round_guides.push_back({s.t_before, s.t_after, r.guide_paths.size() - 1});
+    const int margin = static_cast<int>(std::ceil(P.window_margin_s / at.spline.knotSpan()));
+    const int lo = std::max(kFirstFree, s.blocked.front().segment - margin);
+    const int hi = std::min(last_free, s.blocked.back().segment + 3 + margin);
+    for (int i = lo; i <= hi; ++i) at.free_mask[i] = 1;
+  }
+  if (no_path) return RoundsOutcome::kNoPath;
+  if (at.round == 0 && P.guide_warm_start && !round_guides.empty()) {
+    // The curve through the warm-started control points cuts the corners of the guide, which
+    // hugs the obstacles: give those grazes their pairs now (from the same guides) rather
+    // than in another round.
+    const std::vector<CollisionStretch> grazes = timed(&r.stats.check_us, [&] {
+      return findCollisionStretches(at.spline, grid, P.start_escape_radius_m, at.check_step,
+                                    at.escape_min_distance);
+    });
+    for (const CollisionStretch& g : grazes) {
+      for (const GuideSpan& span : round_guides) {
+        if (g.blocked.back().t < span.t0 || g.blocked.front().t > span.t1) continue;
+        added += addAnchorPairs(g, r.guide_paths[span.index], at.spline, grid, kFirstFree,
+                                last_free, clearance, at.pairs);
+        break;
+      }
+    }
+  }
+  if (added == 0 && at.round > 0 && !feasibility_round) at.boost *= kCollisionBoost;
+  std::vector<int> free_points;
+  for (int i = kFirstFree; i <= last_free; ++i) {
+    if (at.free_mask[i]) free_points.push_back(i);
+  }
+  if (free_points.empty()) return RoundsOutcome::kStillColliding;
+
+  CostWeights w;
+  w.smooth = r.narrow ? P.lambda_smooth_narrow : P.lambda_smooth_open;
+  w.collision = at.boost * (r.narrow ? P.lambda_collision_narrow : P.lambda_collision_open);
+  w.feasibility = at.feasibility_boost * P.lambda_feasibility;
+  r.weights = w;
+  const BsplineCost cost(settings, w, &at.pairs);
+  const bool keep_altitude = horizontalProblem(at.pairs, at.spline.controlPoints(), free_points, P);
+  const OptimizeResult opt = timed(&r.stats.optimize_us, [&] {
+    return optimizeControlPoints(at.spline, cost, free_points, P.max_iterations,
+                                 P.optimizer_ftol_rel, keep_altitude);
+  });
+  at.has_refine_base = false;  // the curve changed: later re-timings start from it
+  at.retimed_while_colliding = false;
+  ++at.round;
+  ++r.stats.rounds;
+  r.stats.evaluations += opt.evaluations;
+  if (!opt.ok) {
+    r.detail = opt.error;
+    return RoundsOutcome::kOptimizerError;
+  }
+  r.terms = opt.terms;
+  if (trace_) {
+    trace_("round " + std::to_string(at.round) + ": stretches " + std::to_string(stretches.size()) +
+           ", pairs added " + std::to_string(added) + ", dt " +
+           std::to_string(at.spline.knotSpan()) + (r.narrow ? ", narrow" : ", open") + ", evals " +
+           std::to_string(opt.evaluations) + ", Js " + std::to_string(opt.terms.smooth) + ", Jc " +
+           std::to_string(opt.terms.collision) + ", Jf " + std::to_string(opt.terms.feasibility) +
+           (keep_altitude ? ", xy" : ", xyz") + " " + opt.error);
+  }
+  return std::nullopt;
 }
 
 PlanResult Planner::plan(const VoxelGrid& grid, const PlanRequest& req) {

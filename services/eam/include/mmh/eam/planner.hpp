@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "mmh/common/trajectory.hpp"
 #include "mmh/common/voxel_grid.hpp"
 #include "mmh/eam/bspline_cost.hpp"
+#include "mmh/eam/collision_pairs.hpp"
 #include "mmh/eam/eam_params.hpp"
 #include "mmh/eam/guide_search.hpp"
 #include "mmh/eam/uniform_bspline.hpp"
@@ -74,6 +76,23 @@ class Planner {
   // within the limits, or the rounds run out.
   RoundsOutcome runRounds(const VoxelGrid& grid, const PlanRequest& req, Attempt& attempt,
                           PlanResult& r);
+  // The steps of one pass of runRounds, in their order.
+  // What a collision-free curve over the limits needs: accept it, re-time it, or reshape it in
+  // a feasibility round (whose counters this call advances).
+  enum class LimitAction { kAccept, kRetime, kReshape };
+  LimitAction limitAction(Attempt& attempt, int last_free);
+  // Re-times the curve from before the first of a run of slow-downs by their product.
+  void retimeFromBase(const PlanRequest& req, Attempt& attempt, PlanResult& r);
+  // While colliding, once per optimisation round: slows the curve down when it is far over the
+  // limits. True when it did.
+  bool retimeWhileColliding(const PlanRequest& req, Attempt& attempt, PlanResult& r);
+  // One rebound round: A* guides around the colliding stretches, their {p, v} pairs, and an
+  // optimisation of the freed control points. Returns the outcome that ends the rounds, if any.
+  std::optional<RoundsOutcome> reboundRound(const VoxelGrid& grid,
+                                            const std::vector<CollisionStretch>& stretches,
+                                            bool feasibility_round, int last_free,
+                                            const CostSettings& settings, GuideStats& guide_stats,
+                                            Attempt& attempt, PlanResult& r);
 
   EamParams params_;
   GuideSearch guides_;
