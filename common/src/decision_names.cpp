@@ -1,6 +1,7 @@
 #include "mmh/common/decision_names.hpp"
 
 #include "mmh/arbiter_status_t.hpp"
+#include "mmh/heartbeat_t.hpp"
 #include "mmh/plan_request_t.hpp"
 
 namespace mmh {
@@ -54,6 +55,20 @@ std::string modesMaskName(int mask) {
     }
   }
   return out.empty() ? "-" : out;
+}
+
+const char* heartbeatStateName(int state) {
+  switch (state) {
+    case heartbeat_t::STATE_STARTING:
+      return "STARTING";
+    case heartbeat_t::STATE_OK:
+      return "OK";
+    case heartbeat_t::STATE_DEGRADED:
+      return "DEGRADED";
+    case heartbeat_t::STATE_STOPPING:
+      return "STOPPING";
+  }
+  return "?";
 }
 
 }  // namespace mmh

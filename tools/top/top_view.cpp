@@ -6,23 +6,6 @@
 #include "mmh/common/decision_names.hpp"
 
 namespace mmh {
-namespace {
-
-const char* stateName(int8_t s) {
-  switch (s) {
-    case heartbeat_t::STATE_STARTING:
-      return "STARTING";
-    case heartbeat_t::STATE_OK:
-      return "OK";
-    case heartbeat_t::STATE_DEGRADED:
-      return "DEGRADED";
-    case heartbeat_t::STATE_STOPPING:
-      return "STOPPING";
-  }
-  return "?";
-}
-
-}  // namespace
 
 std::string channelPrefix(const std::string& channel, const std::string& base) {
   if (channel.size() >= base.size() &&
@@ -73,9 +56,9 @@ std::string TopView::render(int64_t now_us) const {
     }
     std::snprintf(line, sizeof(line), "%-8s %-14s %-12s %7d %-9s %5.1f %8.1f %8.1f %6lld  %s\n",
                   r.prefix.empty() ? "-" : r.prefix.c_str(), r.last.service.c_str(),
-                  r.last.host.c_str(), r.last.pid, age > 3.0 ? "SILENT" : stateName(r.last.state),
-                  age, r.in_rate, r.out_rate, static_cast<long long>(r.last.msgs_rejected),
-                  detail.c_str());
+                  r.last.host.c_str(), r.last.pid,
+                  age > 3.0 ? "SILENT" : heartbeatStateName(r.last.state), age, r.in_rate,
+                  r.out_rate, static_cast<long long>(r.last.msgs_rejected), detail.c_str());
     out << line;
   }
   for (const auto& [prefix, v] : vehicles_) {

@@ -178,15 +178,9 @@ double EgoForestWorld::shortestPathLength(const Eigen::Vector3d& a, const Eigen:
   lo.z() = std::max(lo.z(), std::min({a.z(), b.z(), 0.0}) - radius);
   hi.z() = std::min(hi.z(), std::max({a.z(), b.z(), top}) + 2.0 * radius + 0.5);
   if ((hi - lo).minCoeff() <= 0.0) return -1.0;
-  double res = bound_.grid_m;
-  Eigen::Vector3i size;
-  for (;;) {
-    size = ((hi - lo) / res).array().ceil().cast<int>().max(1).matrix();
-    if (static_cast<double>(size.x()) * size.y() * size.z() <= 8e6) break;
-    res *= 1.25;
-  }
-  const Eigen::Vector3i origin((lo / res).array().floor().cast<int>());
-  VoxelGrid grid(res, origin, size);
+  VoxelGrid grid = boundSearchGrid(lo, hi, bound_.grid_m);
+  const double res = grid.resolution();
+  const Eigen::Vector3i size = grid.size();
   // A cell is an obstacle where the columns cover its centre (exact on the columns' own grid),
   // or within half a cell of a ring's tube (thinner than a cell, it would fall between centres).
   for (int64_t i = 0; i < grid.numCells(); ++i) {

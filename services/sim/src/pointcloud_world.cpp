@@ -164,15 +164,7 @@ double PointCloudWorld::shortestPathLength(const Eigen::Vector3d& a, const Eigen
   lo = lo.cwiseMax(options_.bound_min_m);
   hi = hi.cwiseMin(options_.bound_max_m);
   if ((hi - lo).minCoeff() <= 0.0) return -1.0;
-  double res = options_.bound_grid_m;
-  Eigen::Vector3i size;
-  for (;;) {
-    size = ((hi - lo) / res).array().ceil().cast<int>().max(1).matrix();
-    if (static_cast<double>(size.x()) * size.y() * size.z() <= 8e6) break;
-    res *= 1.25;
-  }
-  const Eigen::Vector3i origin((lo / res).array().floor().cast<int>());
-  VoxelGrid grid(res, origin, size);
+  VoxelGrid grid = boundSearchGrid(lo, hi, options_.bound_grid_m);
   for (const Eigen::Vector3f& s : surface_) {
     const Eigen::Vector3i local = grid.localIndexOf(s.cast<double>());
     if (grid.inWindow(local)) grid.set(local, Occupancy::kOccupied);

@@ -331,6 +331,18 @@ double gridShortestPath(const VoxelGrid& grid, const Eigen::Vector3d& a, const E
   return pathLength(shortenPath(grid, result.path));
 }
 
+VoxelGrid boundSearchGrid(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double grid_m) {
+  double res = grid_m;
+  Eigen::Vector3i size;
+  for (;;) {
+    size = ((hi - lo) / res).array().ceil().cast<int>().max(1).matrix();
+    if (static_cast<double>(size.x()) * size.y() * size.z() <= 8e6) break;
+    res *= 1.25;
+  }
+  const Eigen::Vector3i origin((lo / res).array().floor().cast<int>());
+  return VoxelGrid(res, origin, size);
+}
+
 double restToRestTime(double length, double vmax, double amax) {
   if (length < 0.0) return -1.0;
   if (length >= vmax * vmax / amax) return length / vmax + vmax / amax;

@@ -30,20 +30,6 @@ const char* awarenessReasonName(int reason) {
   }
 }
 
-const char* heartbeatStateName(int state) {
-  switch (state) {
-    case heartbeat_t::STATE_STARTING:
-      return "STARTING";
-    case heartbeat_t::STATE_OK:
-      return "OK";
-    case heartbeat_t::STATE_DEGRADED:
-      return "DEGRADED";
-    case heartbeat_t::STATE_STOPPING:
-      return "STOPPING";
-    default:
-      return "?";
-  }
-}
 }  // namespace
 
 double roundTo(double value, double step) {
