@@ -134,6 +134,10 @@ bool Arbiter::collisionAhead(int64_t now) const {
   return firstCollisionTime(*grid_, t, t0, t.duration()).has_value();
 }
 
+double Arbiter::stopTouchDistance() const {
+  return params_.vehicle_radius_m + (grid_ ? 0.5 * grid_->resolution() : 0.0);
+}
+
 bool Arbiter::stopCanWait(int64_t now) const {
   if (!grid_ || !hasCommitted() || params_.stop_decision_margin_s <= 0.0) return false;
   const Trajectory& t = committed_.trajectory;
@@ -143,8 +147,9 @@ bool Arbiter::stopCanWait(int64_t now) const {
   if (firstCollisionTime(*grid_, t, std::max(0.0, (now - committed_.start_utime) * kUs), later_s)) {
     return false;
   }
-  const Trajectory later_stop = chooseStoppingTrajectory(
-      grid_, t, later_s, params_.max_acc_mps2, params_.max_vel_mps, params_.check_inflation_m);
+  const Trajectory later_stop =
+      chooseStoppingTrajectory(grid_, t, later_s, params_.max_acc_mps2, params_.max_vel_mps,
+                               params_.check_inflation_m, stopTouchDistance());
   return !firstCollisionTime(*grid_, later_stop, 0.0, later_stop.duration()).has_value();
 }
 
@@ -349,7 +354,8 @@ void Arbiter::commitStop(int64_t now, const std::string& why, Trigger trigger) {
       hasCommitted()
           ? chooseStoppingTrajectory(grid_, committed_.trajectory,
                                      (start - committed_.start_utime) * kUs, params_.max_acc_mps2,
-                                     params_.max_vel_mps, params_.check_inflation_m)
+                                     params_.max_vel_mps, params_.check_inflation_m,
+                                     stopTouchDistance())
           : makeStoppingTrajectory(stateAt(start), params_.max_acc_mps2, params_.max_vel_mps);
   commit(stop, start, Mode::kStop, false);
   // Braking is not a plan: keep trying the modes, from the next map on.

@@ -70,6 +70,7 @@ ArbiterParams loadArbiterParams(const Config& config) {
   p.stale_odometry_s = config.getDouble("arbiter.stale_odometry_s");
   p.start_escape_radius_m = config.getDouble("arbiter.start_escape_radius_m");
   p.inflation_m = config.getDouble("map.inflation_m");
+  p.vehicle_radius_m = config.getDouble("vehicle.radius_m");
   p.check_inflation_m = config.getDouble("arbiter.check_inflation_m");
   p.answer_speed_tolerance = config.getDouble("arbiter.answer_limit_tolerance");
   p.max_answer_duration_s = config.getDouble("arbiter.max_answer_duration_s");

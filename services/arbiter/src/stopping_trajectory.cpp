@@ -103,9 +103,21 @@ Trajectory makeStoppingTrajectory(const Trajectory& path, double t0, double max_
   }
 }
 
+namespace {
+
+// Sample step along a trajectory: at most 1 cm apart in space.
+double sampleStep(const Trajectory& traj) {
+  return std::max(1e-3, 0.01 / std::max(1e-3, traj.maxSpeed()));
+}
+
+// Less unknown than this counts as none: sampling and the cell edges blur a few centimetres.
+constexpr double kUnknownTolerance_m = 0.1;
+
+}  // namespace
+
 double minOccupiedDistance(const VoxelGrid& grid, const Trajectory& traj, double limit_m) {
   if (traj.empty()) return limit_m;
-  const double dt = std::max(1e-3, 0.01 / std::max(1e-3, traj.maxSpeed()));
+  const double dt = sampleStep(traj);
   double best = limit_m;
   for (double t = 0.0;; t += dt) {
     const double tc = std::min(t, traj.duration());
@@ -115,15 +127,42 @@ double minOccupiedDistance(const VoxelGrid& grid, const Trajectory& traj, double
   return best;
 }
 
+StopAssessment assessStop(const VoxelGrid& grid, const Trajectory& stop, double limit_m) {
+  StopAssessment a;
+  a.clearance_m = minOccupiedDistance(grid, stop, limit_m);
+  if (stop.empty()) return a;
+  const double dt = sampleStep(stop);
+  Eigen::Vector3d previous = stop.position(0.0);
+  for (double t = dt;; t += dt) {
+    const double tc = std::min(t, stop.duration());
+    const Eigen::Vector3d p = stop.position(tc);
+    if (grid.atPoint(p) == Occupancy::kUnknown) a.unknown_m += (p - previous).norm();
+    previous = p;
+    if (tc >= stop.duration()) break;
+  }
+  return a;
+}
+
+bool saferStop(const StopAssessment& a, const StopAssessment& b, double touch_m) {
+  const bool a_touches = a.clearance_m < touch_m;
+  const bool b_touches = b.clearance_m < touch_m;
+  if (a_touches != b_touches) return !a_touches;
+  if (!a_touches && std::abs(a.unknown_m - b.unknown_m) > kUnknownTolerance_m)
+    return a.unknown_m < b.unknown_m;
+  return a.clearance_m > b.clearance_m;
+}
+
 Trajectory chooseStoppingTrajectory(const VoxelGrid* grid, const Trajectory& path, double t0,
-                                    double max_acc_mps2, double max_vel_mps, double clearance_m) {
+                                    double max_acc_mps2, double max_vel_mps, double clearance_m,
+                                    double touch_m) {
   Trajectory along = makeStoppingTrajectory(path, t0, max_acc_mps2, max_vel_mps);
   if (!grid || !grid->valid()) return along;
   const double limit = clearance_m + 0.1;
-  const double along_clearance = minOccupiedDistance(*grid, along, limit);
-  if (along_clearance >= clearance_m) return along;
+  const StopAssessment along_seen = assessStop(*grid, along, limit);
+  if (along_seen.clearance_m >= clearance_m && along_seen.unknown_m <= kUnknownTolerance_m)
+    return along;
   Trajectory straight = makeStoppingTrajectory(path.state(t0), max_acc_mps2, max_vel_mps);
-  return minOccupiedDistance(*grid, straight, limit) > along_clearance ? straight : along;
+  return saferStop(assessStop(*grid, straight, limit), along_seen, touch_m) ? straight : along;
 }
 
 }  // namespace mmh::arbiter

@@ -86,19 +86,33 @@ mmh::VoxelGrid gridWithPillar(double x, double y, double radius) {
   return g;
 }
 
-}  // namespace
+// A 0.15 m airframe on a 0.1 m grid enters an occupied cell nearer than this to its centre.
+constexpr double kTouch = 0.2;
 
-// Stopped for danger ahead on a path that bends into a pillar: braking along it (which keeps an
-// avoidance under way) would end 13 cm from its occupied cells, so the straight stop is taken;
-// with the way clear, the stop along the path.
-TEST(StoppingTrajectory, ChoosesTheStopThatKeepsClearOfTheObstacle) {
+// From (0, 0, 1.2) at 2 m/s along x, bending left to rest at (2, 2.5, 1.2) in 3 s.
+mmh::Trajectory bendingPath() {
   mmh::MincoJerk m;
   Eigen::Matrix3d head, tail;
   head << Eigen::Vector3d(0, 0, 1.2), Eigen::Vector3d(2, 0, 0), Eigen::Vector3d::Zero();
   tail << Eigen::Vector3d(2.0, 2.5, 1.2), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero();
   m.setConditions(head, tail, 1);
   m.setParameters(Eigen::Matrix3Xd(3, 0), Eigen::VectorXd::Constant(1, 3.0));
-  const mmh::Trajectory path = m.trajectory();
+  return m.trajectory();
+}
+
+double distanceToSamples(const std::vector<Eigen::Vector3d>& samples, const Eigen::Vector3d& p) {
+  double best = INFINITY;
+  for (const auto& s : samples) best = std::min(best, (s - p).norm());
+  return best;
+}
+
+}  // namespace
+
+// Stopped for danger ahead on a path that bends into a pillar: braking along it (which keeps an
+// avoidance under way) would end 13 cm from its occupied cells, so the straight stop is taken;
+// with the way clear, the stop along the path.
+TEST(StoppingTrajectory, ChoosesTheStopThatKeepsClearOfTheObstacle) {
+  const mmh::Trajectory path = bendingPath();
   const mmh::VoxelGrid clear = gridWithPillar(1.75, 0.85, 0.0);
   const mmh::VoxelGrid pillar = gridWithPillar(1.75, 0.85, 0.3);
   const double clearance = 0.25;
@@ -106,7 +120,7 @@ TEST(StoppingTrajectory, ChoosesTheStopThatKeepsClearOfTheObstacle) {
   ASSERT_LT(mmh::arbiter::minOccupiedDistance(pillar, along, 1.0), 0.15);
 
   const mmh::Trajectory chosen =
-      mmh::arbiter::chooseStoppingTrajectory(&pillar, path, 0.0, 2.0, 3.0, clearance);
+      mmh::arbiter::chooseStoppingTrajectory(&pillar, path, 0.0, 2.0, 3.0, clearance, kTouch);
   EXPECT_GE(mmh::arbiter::minOccupiedDistance(pillar, chosen, 1.0), clearance);
   EXPECT_LT((chosen.position(0) - path.position(0)).norm(), 1e-9);
   EXPECT_LT((chosen.velocity(0) - path.velocity(0)).norm(), 1e-9);
@@ -114,6 +128,62 @@ TEST(StoppingTrajectory, ChoosesTheStopThatKeepsClearOfTheObstacle) {
   EXPECT_LE(chosen.maxAcceleration(), 2.0 + 1e-6);
 
   const mmh::Trajectory kept =
-      mmh::arbiter::chooseStoppingTrajectory(&clear, path, 0.0, 2.0, 3.0, clearance);
+      mmh::arbiter::chooseStoppingTrajectory(&clear, path, 0.0, 2.0, 3.0, clearance, kTouch);
   EXPECT_LT((kept.position(kept.duration()) - along.position(along.duration())).norm(), 1e-9);
+}
+
+// The map knows only a tube around the path ahead (what the camera saw), and one occupied
+// cell of a noisy obstacle edge lies 0.2-0.25 m from the stop along the path: inside the check
+// margin, not touching the airframe. The straight stop would keep farther from that cell but run
+// into unknown space, where anything may stand: the stop along the path is kept.
+TEST(StoppingTrajectory, PrefersKnownSpaceToMoreClearanceFromAMarginCell) {
+  const mmh::Trajectory path = bendingPath();
+  const mmh::Trajectory along = mmh::arbiter::makeStoppingTrajectory(path, 0.0, 2.0, 3.0);
+  const mmh::Trajectory straight = mmh::arbiter::makeStoppingTrajectory(path.state(0.0), 2.0, 3.0);
+  std::vector<Eigen::Vector3d> samples;
+  for (double t = 0.0; t <= along.duration(); t += 0.005) samples.push_back(along.position(t));
+
+  double apart = 0.0;  // how far the straight stop leaves the one along the path
+  for (double t = 0.0; t <= straight.duration(); t += 0.01)
+    apart = std::max(apart, distanceToSamples(samples, straight.position(t)));
+  const double kTube = 0.5 * apart;
+  mmh::VoxelGrid g(0.1, Eigen::Vector3i(-20, -40, 0), Eigen::Vector3i(160, 80, 30));
+  g.setInflationRadius(0.25);
+  bool edge_cell_set = false;
+  for (int64_t i = 0; i < g.numCells(); ++i) {
+    const Eigen::Vector3d c = g.centerOfLocal(g.localFromLinear(i));
+    const double d = distanceToSamples(samples, c);
+    if (d <= kTube) g.setLinear(i, mmh::Occupancy::kFree);
+    // Left of the path (the inside of the bend), away from the straight stop.
+    if (!edge_cell_set && d > 0.21 && d < 0.24 && c.y() > 0.3 && std::abs(c.z() - 1.25) < 0.06) {
+      g.setLinear(i, mmh::Occupancy::kOccupied);
+      edge_cell_set = true;
+    }
+  }
+  ASSERT_TRUE(edge_cell_set);
+  const mmh::arbiter::StopAssessment along_seen = mmh::arbiter::assessStop(g, along, 0.35);
+  const mmh::arbiter::StopAssessment straight_seen = mmh::arbiter::assessStop(g, straight, 0.35);
+  ASSERT_GE(along_seen.clearance_m, kTouch);
+  ASSERT_LT(along_seen.clearance_m, 0.25);
+  ASSERT_GT(straight_seen.clearance_m, along_seen.clearance_m);
+  ASSERT_LT(along_seen.unknown_m, 0.05);
+  ASSERT_GT(straight_seen.unknown_m, 0.2) << "tube " << kTube;
+
+  const mmh::Trajectory chosen =
+      mmh::arbiter::chooseStoppingTrajectory(&g, path, 0.0, 2.0, 3.0, 0.25, kTouch);
+  EXPECT_LT((chosen.position(chosen.duration()) - along.position(along.duration())).norm(), 1e-9);
+}
+
+// The order of stops: touching an occupied cell is worst, then unknown space, then clearance.
+TEST(StoppingTrajectory, SaferStopOrdersTouchThenUnknownThenClearance) {
+  using mmh::arbiter::saferStop;
+  using mmh::arbiter::StopAssessment;
+  const StopAssessment touching{0.15, 0.0}, blind{0.3, 1.0}, known_near{0.21, 0.0},
+      known_far{0.3, 0.0};
+  EXPECT_TRUE(saferStop(blind, touching, kTouch));
+  EXPECT_FALSE(saferStop(touching, blind, kTouch));
+  EXPECT_TRUE(saferStop(known_near, blind, kTouch));
+  EXPECT_TRUE(saferStop(known_far, known_near, kTouch));
+  EXPECT_FALSE(saferStop(known_near, known_far, kTouch));
+  EXPECT_TRUE(saferStop(StopAssessment{0.18, 0.0}, touching, kTouch));  // both touch: clearance
 }

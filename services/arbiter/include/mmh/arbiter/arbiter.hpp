@@ -173,6 +173,8 @@ class Arbiter {
   // round comes next whatever the old round decided).
   void enterPhase(Phase phase);
   bool collisionAhead(int64_t now) const;
+  // Nearer than this to an occupied cell's centre, the airframe enters the cell.
+  double stopTouchDistance() const;
   // A collision ahead that needs a round now (collisionNeedsRoundNow); *eta_s until it is hit.
   bool collisionThreat(int64_t now, double* eta_s) const;
   KinematicState stateAt(int64_t utime) const;

@@ -45,6 +45,8 @@ struct ArbiterParams {
   double replan_fraction = 0.5;
   ParallelModes parallel_modes = ParallelModes::kNone;
   double inflation_m = 0.3;              // the planners' map inflation (local target clearance)
+  double vehicle_radius_m = 0.15;        // airframe: a stop that brings it into an occupied cell
+                                         // is the last one to choose
   double check_inflation_m = 0.25;       // inflation of the arbiter's own collision checks; a bit
                                          // below the planners' so discretisation cannot make a
                                          // freshly verified answer look colliding

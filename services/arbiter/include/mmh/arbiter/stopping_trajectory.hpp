@@ -18,13 +18,28 @@ Trajectory makeStoppingTrajectory(const KinematicState& start, double max_acc_mp
 Trajectory makeStoppingTrajectory(const Trajectory& path, double t0, double max_acc_mps2,
                                   double max_vel_mps);
 
+// What a stop would meet: its least distance to the occupied cells' centres (at most the limit
+// asked) and how far it runs through cells the map does not know.
+struct StopAssessment {
+  double clearance_m = 0.0;
+  double unknown_m = 0.0;
+};
+StopAssessment assessStop(const VoxelGrid& grid, const Trajectory& stop, double limit_m);
+
+// Whether stop `a` is safer than stop `b`: one that brings the airframe into an occupied cell
+// (clearance below touch_m) is worst; between two that do not, the one through less unknown
+// space (where any obstacle may stand) wins, then the one with more clearance.
+bool saferStop(const StopAssessment& a, const StopAssessment& b, double touch_m);
+
 // The stop to commit when `path` is to be left at t0 (danger ahead on it): braking along it, so
 // that an avoidance under way is kept, if that stays clearance_m from the occupied cells of
-// `grid`; else whichever of it and the straight stop from the same state keeps more clearance
-// (braking along a path that bends into the obstacle it is stopped for can reach it: a
-// collision at 0.2 obs/m^2). Without a grid, braking along the path.
+// `grid` through known space; else the safer (saferStop) of it and the straight stop from the
+// same state. Braking along a path that bends into the obstacle it is stopped for can reach it;
+// the straight stop can run into unknown space that the path never crossed. Without a grid,
+// braking along the path.
 Trajectory chooseStoppingTrajectory(const VoxelGrid* grid, const Trajectory& path, double t0,
-                                    double max_acc_mps2, double max_vel_mps, double clearance_m);
+                                    double max_acc_mps2, double max_vel_mps, double clearance_m,
+                                    double touch_m);
 
 // Least distance of the trajectory to the occupied cells' centres (sampled 1 cm apart at most),
 // at most limit_m.
