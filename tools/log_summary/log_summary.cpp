@@ -157,6 +157,8 @@ LogSummary summarizeLog(const std::string& path) {
         continue;
       }
       ++v.outcomes[m.outcome];
+      if (m.degraded) ++v.degraded_decisions;
+      v.max_answer_deadline_s = std::max(v.max_answer_deadline_s, m.answer_deadline_s);
       v.decisions.push_back({(e->timestamp - s.first_us) * 1e-6, m.trigger, m.outcome,
                              m.committed_mode, m.awareness_safe != 0, m.position[0], m.position[1],
                              m.detail});
@@ -225,6 +227,8 @@ void printSummary(const LogSummary& s, std::ostream& out) {
       out << "; commits by mode:";
       for (const auto& [m, n] : v.commits) out << " " << modeName(m) << "=" << n;
       out << "\n";
+      out << "arbiter degraded: " << v.degraded_decisions << " decisions (longest answer deadline "
+          << v.max_answer_deadline_s * 1e3 << " ms)\n";
     }
     if (v.mission_seen) {
       out << "mission: " << (v.reached ? "reached" : "not reached")

@@ -48,6 +48,9 @@ struct VehicleSummary {                          // one channel prefix
   double map_delta_bytes_mean = 0;
   std::map<int, int64_t> outcomes;  // arbiter_status_t.OUTCOME_* -> count
   std::map<int, int64_t> commits;   // committed mode -> count
+  // Decisions taken with the arbiter's latency budget degraded, and the longest deadline used.
+  int64_t degraded_decisions = 0;
+  double max_answer_deadline_s = 0;
   std::vector<DecisionLine> decisions;
   bool mission_seen = false, reached = false, collided = false;
   double flight_time_s = 0, distance_m = 0, energy = 0;

@@ -44,7 +44,8 @@ void ArbiterNode::onGoal(const goal_t& msg) {
 
 void ArbiterNode::onOdometry(const odometry_t& msg) {
   arbiter_.onOdometry(stateOf(msg), msg.header.utime);
-  if (arbiter_.hasGoal() && map_.hasMap() && !arbiter_.odometryStale(ctx_.clock().now())) {
+  if (arbiter_.hasGoal() && map_.hasMap() && !arbiter_.odometryStale(ctx_.clock().now()) &&
+      !arbiter_.latencyBudget().degraded) {
     ctx_.setState(heartbeat_t::STATE_OK, "");
   }
   flush();
@@ -130,6 +131,11 @@ void ArbiterNode::flush() {
     fromVec3(d.position, msg.position);
     fromVec3(d.local_target, msg.local_target);
     msg.detail = d.detail;
+    const arbiter::LatencyBudget& budget = arbiter_.latencyBudget();
+    msg.replan_lead_s = budget.replan_lead_s;
+    msg.answer_deadline_s = budget.answer_deadline_s;
+    msg.degraded = budget.degraded;
+    msg.degraded_reason = budget.why;
     ctx_.publish(channels::kArbiterStatus, msg);
     if (d.outcome == arbiter::Outcome::kStopping) logWarn("arbiter: stopping: " + d.detail);
     if (d.outcome == arbiter::Outcome::kUnreachable) logWarn("arbiter: " + d.detail);
@@ -149,8 +155,22 @@ void ArbiterNode::flush() {
   mirror("rejected_answers", n.rejected_answers);
   mirror("unreachable_goals", n.unreachable_goals);
   mirror("back_offs", n.back_offs);
+  mirror("degraded_periods", n.degraded_periods);
+  // Latencies as counters (ms), so that mmh-top and a log show what the budget sees.
+  auto gauge = [this](const char* name, double seconds) {
+    ctx_.increment(name, static_cast<int64_t>(seconds * 1e3) - ctx_.counter(name));
+  };
+  gauge("answer_latency_p99_ms", arbiter_.latencies().worstAnswerLatency(0.99));
+  gauge("map_age_p99_ms", arbiter_.latencies().mapAge(0.99));
+  gauge("answer_deadline_ms", arbiter_.latencyBudget().answer_deadline_s);
   if (arbiter_.odometryStale(now)) {
     ctx_.setState(heartbeat_t::STATE_DEGRADED, "ODOMETRY is stale: not planning");
+  } else if (arbiter_.latencyBudget().degraded && arbiter_.hasGoal() && map_.hasMap()) {
+    // A steady text (the numbers change with every answer; they are in the counters above and
+    // in ARBITER_STATUS.degraded_reason), so that the log says once when it began.
+    ctx_.setState(heartbeat_t::STATE_DEGRADED,
+                  "latency budget above the configured one (answer_deadline_ms, "
+                  "answer_latency_p99_ms, map_age_p99_ms)");
   }
 }
 

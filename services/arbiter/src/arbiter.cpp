@@ -13,10 +13,6 @@ namespace {
 constexpr double kUs = 1e-6;                 // seconds per microsecond
 constexpr double kSameGoalDistanceM = 1e-6;  // a goal message repeated, not a moved goal
 
-int modeIndex(Mode m) {
-  return static_cast<int>(m);
-}
-
 }  // namespace
 
 // Recently flown positions, 5 per second over the last 20 s, are the back-off candidates.
@@ -26,7 +22,17 @@ constexpr double kBackOffSamplePeriodS = 0.2;
 Arbiter::Arbiter(const ArbiterParams& params)
     : params_(params),
       chain_(params.policy),
-      progress_(params.progress_min_step_m, kBackOffHistoryS, kBackOffSamplePeriodS) {}
+      progress_(params.progress_min_step_m, kBackOffHistoryS, kBackOffSamplePeriodS),
+      latency_(params.latency_window_s),
+      budget_(mmh::arbiter::latencyBudget(0.0, 0.0, params)) {}
+
+void Arbiter::updateLatencyBudget() {
+  latency_.expire(now_);
+  LatencyBudget next = mmh::arbiter::latencyBudget(latency_.worstAnswerLatency(0.99),
+                                                   latency_.mapAge(0.99), params_);
+  if (next.degraded && !budget_.degraded) ++counters_.degraded_periods;
+  budget_ = std::move(next);
+}
 
 bool Arbiter::mapStale(int64_t now) const {
   return map_seq_ == 0 || (now - map_utime_) * kUs > params_.stale_map_s;
@@ -75,6 +81,8 @@ void Arbiter::onMapUpdated(const VoxelGrid& grid, int64_t map_seq, int64_t map_u
   map_seq_ = map_seq;
   map_utime_ = map_utime;
   now_ = std::max(now_, now);
+  latency_.onMapAge((now_ - map_utime) * kUs, now_);
+  updateLatencyBudget();
   if (stopped_for_stale_map_ && !mapStale(now_)) stopped_for_stale_map_ = false;
   // Rule (2): a newly mapped obstacle on the rest of the committed trajectory.
   double eta_s = 0.0;
@@ -98,6 +106,8 @@ void Arbiter::onAnswer(const ModeAnswer& answer, int64_t now) {
   if (answer.mode >= Mode::kFpm && answer.mode <= Mode::kEam) {
     ++counters_.iterations[modeIndex(answer.mode)];
   }
+  // Late answers too: they are what the budget must learn from.
+  if (latency_.onAnswer(answer.request_id, now) >= 0.0) updateLatencyBudget();
   if (!round_) {
     ++counters_.late_answers;
     return;
@@ -142,7 +152,7 @@ bool Arbiter::stopCanWait(int64_t now) const {
   if (!grid_ || !hasCommitted() || params_.stop_decision_margin_s <= 0.0) return false;
   const Trajectory& t = committed_.trajectory;
   const double later_s =
-      (now - committed_.start_utime) * kUs + params_.replan_lead_s + params_.stop_decision_margin_s;
+      (now - committed_.start_utime) * kUs + budget_.replan_lead_s + params_.stop_decision_margin_s;
   if (later_s >= t.duration()) return false;
   if (firstCollisionTime(*grid_, t, std::max(0.0, (now - committed_.start_utime) * kUs), later_s)) {
     return false;
@@ -264,8 +274,8 @@ void Arbiter::startRound(Trigger trigger, const std::vector<Mode>& modes, int64_
   last_round_utime_ = now;
   Round round;
   round.trigger = trigger;
-  round.start.start_utime = now + static_cast<int64_t>(params_.replan_lead_s * 1e6);
-  round.deadline_utime = now + static_cast<int64_t>(params_.answer_deadline_s * 1e6);
+  round.start.start_utime = now + static_cast<int64_t>(budget_.replan_lead_s * 1e6);
+  round.deadline_utime = now + static_cast<int64_t>(budget_.answer_deadline_s * 1e6);
   round.start.state = stateAt(round.start.start_utime);
   // EAM on a collision re-optimises the rest of the committed trajectory, ending where it ends,
   // unless that end itself is now inside an obstacle (with the planners' margin, which is wider
@@ -320,6 +330,7 @@ void Arbiter::startRound(Trigger trigger, const std::vector<Mode>& modes, int64_
     r.goal = goal_.position;
     if (m == Mode::kEam && use_reference && !back_off) r.reference = reference;
     chain_.markAsked(m);
+    latency_.onRequest(r.request_id, m, now);
     round.requests.push_back(r);
     requests_.push_back(r);
   }
@@ -349,7 +360,7 @@ void Arbiter::commit(const Trajectory& trajectory, int64_t start_utime, Mode mod
 }
 
 void Arbiter::commitStop(int64_t now, const std::string& why, Trigger trigger) {
-  const int64_t start = now + static_cast<int64_t>(params_.replan_lead_s * 1e6);
+  const int64_t start = now + static_cast<int64_t>(budget_.replan_lead_s * 1e6);
   const Trajectory stop =
       hasCommitted()
           ? chooseStoppingTrajectory(grid_, committed_.trajectory,

@@ -61,6 +61,10 @@ ArbiterParams loadArbiterParams(const Config& config) {
   p.planning_horizon_s = config.getDouble("arbiter.planning_horizon_s");
   p.replan_lead_s = config.getDouble("arbiter.replan_lead_s");
   p.answer_deadline_s = config.getDouble("arbiter.answer_deadline_s");
+  p.latency_window_s = config.getDouble("arbiter.latency_window_s");
+  p.latency_headroom = config.getDouble("arbiter.latency_headroom");
+  p.max_answer_deadline_s = config.getDouble("arbiter.max_answer_deadline_s");
+  p.max_map_age_s = config.getDouble("arbiter.max_map_age_s");
   p.goal_tolerance_m = config.getDouble("arbiter.goal_tolerance_m");
   p.fixed_replan_distance_m = config.getDouble("arbiter.fixed_replan_distance_m");
   p.parallel_modes = parseParallelModes(config.getString("arbiter.parallel_modes"));

@@ -1,5 +1,8 @@
 #include "mmh/arbiter/replan_rules.hpp"
 
+#include <algorithm>
+#include <string>
+
 namespace mmh::arbiter {
 
 bool usesAwareness(Policy policy) {
@@ -122,6 +125,30 @@ bool shouldStop(StopCause cause, const StopView& v, const ArbiterParams& params)
              v.planned_speed_mps > params.stop_min_speed_mps;
   }
   return false;
+}
+
+LatencyBudget latencyBudget(double answer_p99_s, double map_age_p99_s,
+                            const ArbiterParams& params) {
+  LatencyBudget b;
+  b.answer_deadline_s = params.answer_deadline_s;
+  b.replan_lead_s = params.replan_lead_s;
+  const double needed_s = params.latency_headroom * answer_p99_s;
+  if (needed_s > params.answer_deadline_s) {
+    b.answer_deadline_s = std::min(needed_s, params.max_answer_deadline_s);
+    // The lead keeps its configured margin over the deadline (the commit must reach the vehicle).
+    const double margin_s = std::max(0.0, params.replan_lead_s - params.answer_deadline_s);
+    b.replan_lead_s = std::max(params.replan_lead_s, b.answer_deadline_s + margin_s);
+    b.degraded = true;
+    b.why = "answers late (p99 " + std::to_string(static_cast<int>(answer_p99_s * 1e3)) +
+            " ms): deadline " + std::to_string(static_cast<int>(b.answer_deadline_s * 1e3)) +
+            " ms, lead " + std::to_string(static_cast<int>(b.replan_lead_s * 1e3)) + " ms";
+  }
+  if (map_age_p99_s > params.max_map_age_s) {
+    b.degraded = true;
+    b.why += std::string(b.why.empty() ? "" : "; ") + "LOCAL_MAP late (p99 " +
+             std::to_string(static_cast<int>(map_age_p99_s * 1e3)) + " ms old)";
+  }
+  return b;
 }
 
 }  // namespace mmh::arbiter

@@ -15,6 +15,7 @@
 #include "mmh/arbiter/answer_check.hpp"
 #include "mmh/arbiter/arbiter_params.hpp"
 #include "mmh/arbiter/fallback_chain.hpp"
+#include "mmh/arbiter/latency_monitor.hpp"
 #include "mmh/arbiter/modes.hpp"
 #include "mmh/arbiter/phase.hpp"
 #include "mmh/arbiter/progress_monitor.hpp"
@@ -87,6 +88,7 @@ struct ArbiterCounters {
   int not_committed_stale_odom = 0;  // verified answers dropped because ODOMETRY was stale
   int unreachable_goals = 0;         // times a goal was given up for lack of progress
   int back_offs = 0;                 // rounds that backed off to free space while stuck
+  int degraded_periods = 0;          // times the latency budget became degraded
 };
 
 class Arbiter {
@@ -120,6 +122,10 @@ class Arbiter {
   bool pending() const { return round_.has_value(); }  // a planning round is in flight
   bool reached() const { return phase_ == Phase::kReached; }
   bool mapStale(int64_t now) const;
+  // The replan lead and answer deadline in use, and whether (and why) the computer is too slow
+  // for the configured ones (replan_rules.hpp, latencyBudget).
+  const LatencyBudget& latencyBudget() const { return budget_; }
+  const LatencyMonitor& latencies() const { return latency_; }
   // ODOMETRY received before, but older than stale_odometry_s at `now` (message clock).
   bool odometryStale(int64_t now) const;
 
@@ -180,6 +186,7 @@ class Arbiter {
   KinematicState stateAt(int64_t utime) const;
   Eigen::Vector3d vehiclePosition() const;
   void pushDecision(DecisionOut decision);
+  void updateLatencyBudget();
 
   ArbiterParams params_;
   Phase phase_ = Phase::kIdle;
@@ -200,6 +207,8 @@ class Arbiter {
   std::optional<double> collision_eta_s_;  // a threatening collision awaits its round
   FallbackChain chain_;
   ProgressMonitor progress_;
+  LatencyMonitor latency_;
+  LatencyBudget budget_;
   std::optional<int64_t> last_backoff_utime_;
   std::string last_failure_notes_;  // of the newest failed round, for the unreachable report
   int64_t last_round_utime_ = 0;

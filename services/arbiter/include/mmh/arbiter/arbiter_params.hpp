@@ -38,6 +38,13 @@ struct ArbiterParams {
   double planning_horizon_s = 5.0;  // local target: at most max_vel * horizon away
   double replan_lead_s = 0.05;      // a new trajectory takes effect this long after the request
   double answer_deadline_s = 0.04;  // answers later than this after the request are ignored
+  // Latency budget (replan_rules.hpp, latencyBudget): observed answer latencies (p99 over the
+  // last latency_window_s per mode) times latency_headroom may lengthen the deadline up to
+  // max_answer_deadline_s; LOCAL_MAP older than max_map_age_s (p99) on arrival is degraded.
+  double latency_window_s = 10.0;
+  double latency_headroom = 1.5;
+  double max_answer_deadline_s = 0.4;
+  double max_map_age_s = 0.25;
   double goal_tolerance_m = 0.3;
   double fixed_replan_distance_m = 1.5;  // baselines: replan after this much progress
   // Lazy rule (1): replan once this share of the committed trajectory's duration has passed

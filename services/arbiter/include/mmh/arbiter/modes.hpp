@@ -32,6 +32,11 @@ const char* toString(Mode mode);
 const char* toString(Trigger trigger);
 const char* toString(Outcome outcome);
 
+// Index of per-mode arrays (size 5: none, FPM, SOM, EAM, stop).
+inline int modeIndex(Mode mode) {
+  return static_cast<int>(mode);
+}
+
 inline uint8_t modeBit(Mode mode) {
   return static_cast<uint8_t>(1u << static_cast<int>(mode));
 }

@@ -19,6 +19,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "mmh/arbiter/arbiter_params.hpp"
@@ -112,5 +113,20 @@ struct StopView {
 };
 
 bool shouldStop(StopCause cause, const StopView& view, const ArbiterParams& params);
+
+// How long a round may take on this computer: the replan lead (a new trajectory takes effect
+// this long after its request) and the answer deadline, from the answer latencies observed
+// (LatencyMonitor). With answers within answer_deadline_s both stay as configured; slower
+// answers lengthen the deadline to latency_headroom x their p99 (at most max_answer_deadline_s)
+// and the lead with it, so that answers stop missing a deadline the computer cannot meet.
+// Degraded when the budget is above the configured one or LOCAL_MAP arrives older (p99) than
+// max_map_age_s; `why` says which.
+struct LatencyBudget {
+  double replan_lead_s = 0.0;
+  double answer_deadline_s = 0.0;
+  bool degraded = false;
+  std::string why;
+};
+LatencyBudget latencyBudget(double answer_p99_s, double map_age_p99_s, const ArbiterParams& params);
 
 }  // namespace mmh::arbiter
