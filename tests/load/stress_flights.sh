@@ -34,7 +34,8 @@ while [ $# -gt 0 ]; do
   esac
 done
 command -v stress-ng >/dev/null || { echo "stress_flights: stress-ng is not installed (deploy/setup.sh installs it)" >&2; exit 2; }
-[ -n "$out" ] || out=$(mktemp -d /tmp/mmh-stress-XXXXXX)
+temporary=0
+[ -n "$out" ] || { out=$(mktemp -d /tmp/mmh-stress-XXXXXX); temporary=1; }
 mkdir -p "$out"
 export MMH_BIN_DIR=$build/bin
 run="" stress="" logger=""
@@ -109,4 +110,5 @@ done
 } >"$out/report.md"
 cat "$out/report.md"
 if grep -q COLLIDED "$out/flights.txt"; then echo "FAIL: a flight collided (report: $out/report.md)"; exit 1; fi
-echo "PASS: no collision (report: $out/report.md)"
+echo "PASS: no collision"
+if [ $temporary = 1 ]; then rm -rf "$out"; else echo "report: $out/report.md"; fi
