@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "mmh/common/config_registry.hpp"
+#include "mmh/common/replan_lead.hpp"
 
 namespace mmh {
 namespace {
@@ -90,25 +91,34 @@ std::vector<ConfigConstraint> buildConstraints() {
                  return s.str();
                }});
   c.push_back({{"vehicle.max_vel_mps", "vehicle.max_acc_mps2", "arbiter.replan_lead_s",
-                "arbiter.stale_map_s", "awareness.sensor_range_m"},
+                "arbiter.answer_deadline_s", "arbiter.max_answer_deadline_s", "arbiter.stale_map_s",
+                "awareness.sensor_range_m"},
                "vehicle.max_vel_mps^2 / (2 vehicle.max_acc_mps2) + vehicle.max_vel_mps x "
-               "(arbiter.replan_lead_s + arbiter.stale_map_s) <= awareness.sensor_range_m",
+               "(longest replan lead + arbiter.stale_map_s) <= awareness.sensor_range_m, the "
+               "longest lead being arbiter.max_answer_deadline_s + arbiter.replan_lead_s - "
+               "arbiter.answer_deadline_s",
                "at full speed the vehicle must be able to stop within what its sensor sees, after "
-               "the reaction time (replan lead) and the longest map delay it flies on",
+               "the longest reaction time (the replan lead of a loaded computer) and the longest "
+               "map delay it flies on",
                [](const Config& config) -> std::string {
                  const double v = config.getDouble("vehicle.max_vel_mps");
                  const double a = config.getDouble("vehicle.max_acc_mps2");
-                 const double latency = config.getDouble("arbiter.replan_lead_s") +
-                                        config.getDouble("arbiter.stale_map_s");
+                 const double lead =
+                     replanLeadFor(config.getDouble("arbiter.max_answer_deadline_s"),
+                                   config.getDouble("arbiter.replan_lead_s"),
+                                   config.getDouble("arbiter.answer_deadline_s"));
+                 const double latency = lead + config.getDouble("arbiter.stale_map_s");
                  const double range = config.getDouble("awareness.sensor_range_m");
                  const double needed = v * v / (2.0 * a) + v * latency;
                  if (needed <= range + 1e-9) return "";
                  std::ostringstream s;
                  s << "stopping from 'vehicle.max_vel_mps' = " << v
-                   << " m/s at 'vehicle.max_acc_mps2' = " << a << " m/s^2 after "
-                   << "'arbiter.replan_lead_s' + 'arbiter.stale_map_s' = " << latency << " s takes "
-                   << needed << " m, beyond 'awareness.sensor_range_m' = " << range
-                   << " m: lower the speed, or use a sensor of longer range";
+                   << " m/s at 'vehicle.max_acc_mps2' = " << a << " m/s^2 after the longest "
+                   << "replan lead (" << lead << " s, from 'arbiter.max_answer_deadline_s') + "
+                   << "'arbiter.stale_map_s' = " << latency << " s takes " << needed
+                   << " m, beyond 'awareness.sensor_range_m' = " << range
+                   << " m: lower the speed or 'arbiter.max_answer_deadline_s', or use a sensor of "
+                      "longer range";
                  return s.str();
                }});
   const std::string escape_why =

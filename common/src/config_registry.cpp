@@ -250,7 +250,7 @@ std::vector<KeySpec> buildKeys() {
            "The latency budget reads the answers and maps of this last stretch of time"),
       real("arbiter.latency_headroom", 1.0, 10.0, "1.5",
            "Late answers lengthen the deadline to this x their p99 latency"),
-      real("arbiter.max_answer_deadline_s", 0.001, 2.0, "0.4",
+      real("arbiter.max_answer_deadline_s", 0.001, 2.0, "0.2",
            "The longest the deadline (and with it the replan lead) may grow under load"),
       real("arbiter.max_map_age_s", 0.01, 5.0, "0.25",
            "LOCAL_MAP older than this on arrival (p99) marks the arbiter degraded"),

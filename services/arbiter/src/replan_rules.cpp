@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <string>
 
+#include "mmh/common/replan_lead.hpp"
+
 namespace mmh::arbiter {
 
 bool usesAwareness(Policy policy) {
@@ -136,8 +138,8 @@ LatencyBudget latencyBudget(double answer_p99_s, double map_age_p99_s,
   if (needed_s > params.answer_deadline_s) {
     b.answer_deadline_s = std::min(needed_s, params.max_answer_deadline_s);
     // The lead keeps its configured margin over the deadline (the commit must reach the vehicle).
-    const double margin_s = std::max(0.0, params.replan_lead_s - params.answer_deadline_s);
-    b.replan_lead_s = std::max(params.replan_lead_s, b.answer_deadline_s + margin_s);
+    b.replan_lead_s =
+        replanLeadFor(b.answer_deadline_s, params.replan_lead_s, params.answer_deadline_s);
     b.degraded = true;
     b.why = "answers late (p99 " + std::to_string(static_cast<int>(answer_p99_s * 1e3)) +
             " ms): deadline " + std::to_string(static_cast<int>(b.answer_deadline_s * 1e3)) +

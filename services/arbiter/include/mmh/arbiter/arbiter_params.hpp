@@ -43,7 +43,7 @@ struct ArbiterParams {
   // max_answer_deadline_s; LOCAL_MAP older than max_map_age_s (p99) on arrival is degraded.
   double latency_window_s = 10.0;
   double latency_headroom = 1.5;
-  double max_answer_deadline_s = 0.4;
+  double max_answer_deadline_s = 0.2;
   double max_map_age_s = 0.25;
   double goal_tolerance_m = 0.3;
   double fixed_replan_distance_m = 1.5;  // baselines: replan after this much progress
