@@ -133,6 +133,7 @@ void ArbiterNode::flush() {
     ctx_.publish(channels::kArbiterStatus, msg);
     if (d.outcome == arbiter::Outcome::kStopping) logWarn("arbiter: stopping: " + d.detail);
     if (d.outcome == arbiter::Outcome::kUnreachable) logWarn("arbiter: " + d.detail);
+    if (d.outcome == arbiter::Outcome::kGoalMoved) logWarn("arbiter: " + d.detail);
     if (d.outcome == arbiter::Outcome::kFailed && failed_log_.shouldLog()) {
       logWarn("arbiter: decision " + std::to_string(d.decision_seq) + " failed: " + d.detail);
     }
@@ -149,6 +150,7 @@ void ArbiterNode::flush() {
   mirror("rejected_answers", n.rejected_answers);
   mirror("unreachable_goals", n.unreachable_goals);
   mirror("back_offs", n.back_offs);
+  mirror("moved_goals", n.moved_goals);
   if (arbiter_.odometryStale(now)) {
     ctx_.setState(heartbeat_t::STATE_DEGRADED, "ODOMETRY is stale: not planning");
   }
