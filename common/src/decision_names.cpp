@@ -42,6 +42,8 @@ const char* outcomeName(int outcome) {
       return "rejected";
     case arbiter_status_t::OUTCOME_UNREACHABLE:
       return "unreachable";
+    case arbiter_status_t::OUTCOME_GOAL_MOVED:
+      return "goal-moved";
   }
   return "?";
 }

@@ -83,6 +83,12 @@ bool validate(const goal_t& msg, std::string* why) {
   if (!validate(msg.header, why)) return false;
   if (msg.goal_id < 0) return fail(why, "goal_id is negative");
   if (!finiteVec(msg.position, 3)) return fail(why, "goal position is not finite");
+  if (msg.num_waypoints < 0 || msg.num_waypoints > kMaxWaypoints)
+    return fail(why, "num_waypoints outside [0, " + std::to_string(kMaxWaypoints) + "]");
+  if (msg.waypoint_index < 0 || (msg.num_waypoints > 0 && msg.waypoint_index >= msg.num_waypoints))
+    return fail(why, "waypoint_index outside the mission");
+  if (!std::isfinite(msg.tolerance_m) || msg.tolerance_m < 0.0 || msg.tolerance_m > 1e3)
+    return fail(why, "tolerance_m is not in [0, 1000] m");
   return true;
 }
 
@@ -191,6 +197,33 @@ bool validate(const mission_status_t& msg, std::string* why) {
   if (!validate(msg.header, why)) return false;
   const double v[3] = {msg.flight_time_s, msg.distance_m, msg.energy};
   if (!finiteVec(v, 3, 1e12)) return fail(why, "non-finite metrics");
+  const double e[2] = {msg.tracking_error_rms_m, msg.tracking_error_max_m};
+  if (!finiteVec(e, 2, 1e6)) return fail(why, "non-finite tracking error");
+  if (msg.num_waypoints < 0 || msg.num_waypoints > kMaxWaypoints || msg.waypoint_index < 0)
+    return fail(why, "waypoint_index or num_waypoints out of range");
+  if (msg.num_arrivals < 0 || msg.num_arrivals > kMaxWaypoints ||
+      static_cast<size_t>(msg.num_arrivals) != msg.arrival_waypoint.size() ||
+      msg.arrival_waypoint.size() != msg.arrival_time_s.size() ||
+      msg.arrival_waypoint.size() != msg.arrival_speed_mps.size())
+    return fail(why, "num_arrivals disagrees with the data");
+  for (size_t i = 0; i < msg.arrival_time_s.size(); ++i) {
+    const double a[2] = {msg.arrival_time_s[i], msg.arrival_speed_mps[i]};
+    if (!finiteVec(a, 2, 1e12)) return fail(why, "non-finite arrival");
+  }
+  return true;
+}
+
+bool validate(const setpoint_t& msg, std::string* why) {
+  if (!validate(msg.header, why)) return false;
+  if (msg.trajectory_id < 0) return fail(why, "trajectory_id is negative");
+  if (msg.state < setpoint_t::STATE_HOLD || msg.state > setpoint_t::STATE_HOVER)
+    return fail(why, "unknown state " + std::to_string(msg.state));
+  if (!finiteVec(msg.position, 3)) return fail(why, "position is not finite");
+  if (!finiteVec(msg.velocity, 3, 1e3) || !finiteVec(msg.acceleration, 3, 1e4) ||
+      !finiteVec(msg.jerk, 3, 1e6))
+    return fail(why, "velocity, acceleration or jerk is not finite or absurd");
+  const double yaw[2] = {msg.yaw_rad, msg.yaw_rate_radps};
+  if (!finiteVec(yaw, 2, 1e3)) return fail(why, "yaw or yaw rate is not finite");
   return true;
 }
 

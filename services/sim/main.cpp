@@ -15,7 +15,8 @@ int main(int argc, char** argv) {
   double speed = 1.0, duration_s = 0.0;
   mmh::ArgParser parser("mmh-sim",
                         "Simulated UAV: random forest or PCD world, vehicle that follows the "
-                        "committed TRAJECTORY, depth camera or LiDAR, mission ground truth.");
+                        "committed TRAJECTORY (or the SETPOINT stream), depth camera or LiDAR, "
+                        "mission ground truth.");
   mmh::addNodeOptions(parser, &node);
   parser.addString(
       "--world", &o.world,
@@ -28,6 +29,9 @@ int main(int argc, char** argv) {
   parser.addVector3("--goal", &o.goal,
                     "goal x,y,z (m): kept clear in the forest, used until a GOAL arrives");
   parser.addString("--sensor", &o.sensor, "depth or lidar");
+  parser.addString("--follow", &o.follow,
+                   "what the vehicle flies: trajectory (the committed TRAJECTORY, exactly) or "
+                   "setpoint (mmh-setpoint's SETPOINT, through the tracking model sim.tracking.*)");
   parser.addInt("--noise-seed", &noise_seed, "seed of the range noise (sim.*.range_noise_m)");
   parser.addDouble("--yaw-deg", &o.initial_yaw_deg,
                    "initial heading in degrees (nan: towards the goal)");
@@ -90,7 +94,12 @@ int main(int argc, char** argv) {
     std::cout << "mmh-sim: reached=" << m.reached << " collided=" << m.collided
               << " flight_time_s=" << m.flight_time_s << " distance_m=" << m.distance_m
               << " energy=" << m.energy << " min_clearance_m=" << m.min_clearance_m
-              << " time_bound_s=" << m.time_bound_s << std::endl;
+              << " time_bound_s=" << m.time_bound_s;
+    if (m.follows_setpoints) {
+      std::cout << " tracking_error_rms_m=" << m.tracking_error_rms_m
+                << " tracking_error_max_m=" << m.tracking_error_max_m;
+    }
+    std::cout << std::endl;
     ctx.setState(mmh::heartbeat_t::STATE_STOPPING, "stopped");
     ctx.publishHeartbeat();
     return 0;

@@ -128,4 +128,8 @@ void consume(const mission_status_t& msg) {
   reencode(msg);
 }
 
+void consume(const setpoint_t& msg) {
+  reencode(msg);
+}
+
 }  // namespace mmh::fuzz

@@ -14,6 +14,7 @@
 #include "mmh/plan_request_t.hpp"
 #include "mmh/plan_result_t.hpp"
 #include "mmh/pointcloud_t.hpp"
+#include "mmh/setpoint_t.hpp"
 #include "mmh/trajectory_t.hpp"
 
 namespace mmh::fuzz {
@@ -29,5 +30,6 @@ void consume(const plan_result_t& msg);
 void consume(const arbiter_status_t& msg);
 void consume(const heartbeat_t& msg);
 void consume(const mission_status_t& msg);
+void consume(const setpoint_t& msg);
 
 }  // namespace mmh::fuzz

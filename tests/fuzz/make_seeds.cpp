@@ -22,6 +22,7 @@
 #include "mmh/plan_request_t.hpp"
 #include "mmh/plan_result_t.hpp"
 #include "mmh/pointcloud_t.hpp"
+#include "mmh/setpoint_t.hpp"
 
 namespace fs = std::filesystem;
 using namespace mmh;
@@ -110,6 +111,11 @@ void goal() {
   m.position[0] = 19.95;
   m.position[2] = 1.2;
   write(m, "mission");
+  m.goal_id = 3;
+  m.waypoint_index = 1;
+  m.num_waypoints = 3;
+  m.tolerance_m = 1.0;
+  write(m, "waypoint");
 }
 
 void localMap() {
@@ -223,6 +229,33 @@ void missionStatus() {
   m.distance_m = 40.0;
   m.energy = 241.3;
   write(m, "reached");
+  m.num_waypoints = 2;
+  m.waypoint_index = 1;
+  m.num_arrivals = 2;
+  m.arrival_waypoint = {0, 1};
+  m.arrival_time_s = {8.1, 16.7};
+  m.arrival_speed_mps = {2.4, 0.1};
+  m.follows_setpoints = true;
+  m.tracking_error_rms_m = 0.04;
+  m.tracking_error_max_m = 0.12;
+  write(m, "mission-tracked");
+}
+
+void setpoint() {
+  setpoint_t m{};
+  m.header = header(2'000'000, "mmh-setpoint");
+  m.trajectory_id = 4;
+  m.state = setpoint_t::STATE_TRACKING;
+  m.position[0] = 1.0;
+  m.position[2] = 1.2;
+  m.velocity[0] = 2.5;
+  m.acceleration[1] = -0.4;
+  m.jerk[2] = 0.1;
+  m.yaw_rad = 0.3;
+  m.yaw_rate_radps = 0.05;
+  write(m, "tracking");
+  m.state = setpoint_t::STATE_HOVER;
+  write(m, "hover");
 }
 
 }  // namespace
@@ -236,6 +269,7 @@ int main(int argc, char** argv) {
   odometry();
   pointcloud();
   goal();
+  setpoint();
   localMap();
   awareness();
   trajectory();

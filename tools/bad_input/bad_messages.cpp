@@ -307,7 +307,8 @@ void addStackMessages(std::vector<BadMessage>& out, Stamper& st, const Catalogue
     odometry_t o2 = odometry(st.next(map));
     out.push_back({"an odometry_t on LOCAL_MAP (wrong type)", map, encode(o2),
                    each(kMapReceivers, "rejected_decode")});
-    // A good map with an obstacle, then a goal inside that obstacle.
+    // A good map with an obstacle, then a goal inside that obstacle: moved to the nearest free
+    // point (arbiter.goal_relocate_radius_m), and counted.
     local_map_t fine = good;
     fine.header = st.next(map);
     out.push_back({"LOCAL_MAP (good, an obstacle at 3, 0, 1.2)", map, encode(fine), {}});
@@ -316,8 +317,10 @@ void addStackMessages(std::vector<BadMessage>& out, Stamper& st, const Catalogue
     g.goal_id = 903;
     g.position[0] = 3.0;
     g.position[2] = 1.2;
-    BadMessage inside{
-        "GOAL inside a mapped obstacle", goal, encode(g), {{"mmh-arbiter", "rejected_goal"}}};
+    BadMessage inside{"GOAL inside a mapped obstacle (moved out of it)",
+                      goal,
+                      encode(g),
+                      {{"mmh-arbiter", "moved_goals"}}};
     inside.pause_s = 0.3;  // after the map above was applied
     out.push_back(std::move(inside));
   }

@@ -1,6 +1,8 @@
 // mmh-mission-report: waits for a running mission to end (MISSION_STATUS reached or collided, or a
 // timeout) and prints what the demo and users want to know: flight time, distance, energy,
-// planning iterations per mode and computational cost per iteration.
+// planning iterations per mode and computational cost per iteration; for a mission of several
+// waypoints every arrival, and for a vehicle that flies SETPOINT (mmh-sim --follow setpoint) the
+// tracking error.
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
@@ -82,6 +84,19 @@ int main(int argc, char** argv) {
       std::printf("flight time:    %.2f s\n", w.mission.flight_time_s);
       std::printf("distance:       %.2f m\n", w.mission.distance_m);
       std::printf("energy:         %.2f m^2/s^5\n", w.mission.energy);
+      if (w.mission.num_waypoints > 1) {
+        std::printf("waypoints:      %d of %d reached\n", w.mission.num_arrivals,
+                    w.mission.num_waypoints);
+        for (int i = 0; i < w.mission.num_arrivals; ++i) {
+          std::printf("  waypoint %d:    at %.2f s, %.2f m/s\n", w.mission.arrival_waypoint[i] + 1,
+                      w.mission.arrival_time_s[i], w.mission.arrival_speed_mps[i]);
+        }
+      }
+      if (w.mission.follows_setpoints) {
+        std::printf(
+            "tracking error: rms %.3f m, max %.3f m (SETPOINT through the tracking model)\n",
+            w.mission.tracking_error_rms_m, w.mission.tracking_error_max_m);
+      }
     }
     std::printf("iterations:     %d  (FPM %d, SOM %d, EAM %d; failed %d)\n", total, w.calls[1],
                 w.calls[2], w.calls[3], w.failed[1] + w.failed[2] + w.failed[3]);

@@ -1,6 +1,7 @@
 // mmh-stack: flies one mission with every service hosted in this process on memq://, the
 // simulator in lock-step (faster than real time; the same seed gives the same flight).
 #include <iostream>
+#include <sstream>
 
 #include "config_overrides.hpp"
 #include "fleet_report.hpp"
@@ -22,6 +23,26 @@ std::string causeCountsJson(const mmh::FlightCensus& census) {
   return out + "}";
 }
 
+// The mission's and the tracking model's fields, only for flights that have them (so the JSON of
+// a single goal flown exactly stays as it was).
+std::string missionJson(const mmh::sim::MissionMetrics& m) {
+  std::ostringstream out;
+  if (m.num_waypoints > 1) {
+    out << ", \"waypoints\": " << m.num_waypoints << ", \"arrivals\": [";
+    for (size_t i = 0; i < m.arrivals.size(); ++i) {
+      out << (i ? ", " : "") << "{\"waypoint\": " << m.arrivals[i].waypoint_index + 1
+          << ", \"time_s\": " << m.arrivals[i].flight_time_s
+          << ", \"speed_mps\": " << m.arrivals[i].speed_mps << "}";
+    }
+    out << "]";
+  }
+  if (m.follows_setpoints) {
+    out << ", \"tracking_error_rms_m\": " << m.tracking_error_rms_m
+        << ", \"tracking_error_max_m\": " << m.tracking_error_max_m;
+  }
+  return out.str();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -29,7 +50,7 @@ int main(int argc, char** argv) {
   std::string set_help;
   mmh::NodeOptions node;
   mmh::sim::SimOptions sim;
-  std::string policy, log_path;
+  std::string policy, log_path, waypoints_text, mission_path;
   double timeout_s = 120.0, map_loss = 0.0;
   bool json = false;
   int vehicles = 1;
@@ -48,6 +69,13 @@ int main(int argc, char** argv) {
   parser.addVector3("--start", &sim.start, "start x,y,z");
   parser.addVector3("--goal", &sim.goal, "goal x,y,z");
   parser.addString("--sensor", &sim.sensor, "depth or lidar");
+  parser.addString("--follow", &sim.follow,
+                   "trajectory (exactly), or setpoint (mmh-setpoint's SETPOINT through the "
+                   "tracking model)");
+  parser.addString(
+      "--waypoints", &waypoints_text,
+      "a mission \"x,y,z;x,y,z;...\" instead of --goal (passed at speed, the last a stop)");
+  parser.addString("--mission", &mission_path, "a mission file (YAML) instead of --goal");
   parser.addInt("--noise-seed", &noise_seed, "sensor-noise seed");
   parser.addString("--policy", &policy,
                    "arbiter policy: mmh, ego, som, mmh-no-lazy, mmh-no-awareness");
@@ -75,6 +103,14 @@ int main(int argc, char** argv) {
     options.log_path = log_path;
     options.map_loss = map_loss;
     options.vehicles = vehicles;
+    const mmh::MissionRules rules = mmh::loadMissionRules(options.config);
+    if (!waypoints_text.empty()) options.waypoints = mmh::parseWaypointList(waypoints_text, rules);
+    if (!mission_path.empty()) options.waypoints = mmh::loadMissionFile(mission_path, rules);
+    const std::string outside =
+        mmh::missionGeofenceViolation(options.waypoints, mmh::loadGeofence(options.config));
+    if (!outside.empty()) throw mmh::MissionError(outside);
+    // The forest keeps the mission's end clear, and the time bound is computed to it.
+    if (!options.waypoints.empty()) options.sim.goal = options.waypoints.back().position;
     mmh::Stack stack(options);
     if (vehicles > 1) return reportFleet(stack, json);
     const mmh::FlightRecord r = stack.fly();
@@ -94,7 +130,7 @@ int main(int argc, char** argv) {
                 << ", \"max_calls_without_commit\": " << r.census.max_calls_without_commit
                 << ", \"longest_no_progress_s\": " << r.census.longest_no_progress_s
                 << ", \"trajectory_digest\": \"" << std::hex << r.trajectory_digest << std::dec
-                << "\"}\n";
+                << "\"" << missionJson(m) << "}\n";
     } else {
       std::cout << "result:        " << r.end_reason << "\n"
                 << "flight time:   " << m.flight_time_s << " s (bound " << m.time_bound_s << " s)\n"
@@ -105,8 +141,23 @@ int main(int argc, char** argv) {
                 << "cost/iteration " << (iterations ? cost_sum / iterations : 0.0) << " ms\n"
                 << "min clearance: " << m.min_clearance_m << " m\n"
                 << "simulated " << r.sim_time_s << " s in " << r.wall_time_s << " s wall\n";
+      if (m.num_waypoints > 1) {
+        std::cout << "waypoints:     " << m.arrivals.size() << " of " << m.num_waypoints
+                  << " reached\n";
+        for (const auto& a : m.arrivals) {
+          std::cout << "  waypoint " << a.waypoint_index + 1 << ":   at " << a.flight_time_s
+                    << " s, " << a.speed_mps << " m/s\n";
+        }
+      }
+      if (m.follows_setpoints) {
+        std::cout << "tracking error: rms " << m.tracking_error_rms_m << " m, max "
+                  << m.tracking_error_max_m << " m\n";
+      }
     }
     return r.success() ? 0 : 3;
+  } catch (const mmh::MissionError& e) {
+    std::cerr << "mmh-stack: " << e.what() << "\n";
+    return 2;
   } catch (const std::exception& e) {
     std::cerr << "mmh-stack: " << e.what() << "\n";
     return 1;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <stdexcept>
 
 #include "mmh/arbiter_status_t.hpp"
@@ -14,6 +15,7 @@
 #include "mmh/plan_result_t.hpp"
 #include "mmh/trajectory_t.hpp"
 #include "planner_host.hpp"
+#include "setpoint_node.hpp"
 #include "sim_node.hpp"
 
 namespace mmh {
@@ -48,6 +50,8 @@ struct Vehicle {
   StackOptions options;  // with this vehicle's prefix and seeds
   std::unique_ptr<PlannerHost> host;
   std::unique_ptr<SimNode> sim;
+  std::unique_ptr<SetpointNode> setpoint;  // --follow setpoint
+  std::optional<MissionSequencer> mission;
   ServiceContext* observer = nullptr;
   FlightRecord record;
   StopCensusBuilder census;
@@ -64,6 +68,12 @@ struct Vehicle {
     h.loss_seed = options.loss_seed;
     // Planners first, simulator last: when the simulator publishes, everyone already listens.
     host = std::make_unique<PlannerHost>(h, &bus);
+    if (options.sim.follow == "setpoint") {
+      setpoint = std::make_unique<SetpointNode>(host->addContext("mmh-setpoint"), options.config);
+    }
+    if (!options.waypoints.empty()) {
+      mission.emplace(options.waypoints, loadMissionRules(options.config).stop_speed_mps);
+    }
     sim = std::make_unique<SimNode>(host->addContext("mmh-sim"), options.config, options.sim);
     observer = &host->addContext("mmh-stack");
     observer->subscribe(channels::kPlanResult, &Vehicle::onPlanResult, this);
@@ -76,6 +86,15 @@ struct Vehicle {
     goal.header.utime = sim->nowUtime();
     goal.goal_id = 1;
     fromVec3(options.sim.goal, goal.position);
+    if (mission) {
+      const Waypoint& w = mission->current();
+      goal.goal_id = 1 + mission->index();
+      fromVec3(w.position, goal.position);
+      goal.waypoint_index = mission->index();
+      goal.num_waypoints = mission->size();
+      goal.tolerance_m = w.tolerance_m;
+      goal.stop = w.stop;
+    }
     observer->clock().observe(goal.header.utime);
     observer->publish(channels::kGoal, goal);
   }
@@ -83,6 +102,11 @@ struct Vehicle {
   // After a simulation step: heartbeats and the 10 Hz path sample.
   void afterStep() {
     const int64_t now = sim->nowUtime();
+    if (setpoint) setpoint->tick(now);
+    if (mission) {
+      const KinematicState& s = sim->simulator().vehicle().state();
+      if (mission->update(s.position, s.velocity) && !mission->finished()) publishGoal();
+    }
     host->publishHeartbeats(now);
     if (now >= next_sample) {
       next_sample += 100'000;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "mmh/common/config.hpp"
+#include "mmh/common/mission.hpp"
 #include "mmh/sim/mission.hpp"
 #include "mmh/sim/simulator.hpp"
 #include "stop_census.hpp"
@@ -32,6 +33,10 @@ struct StackOptions {
   std::string log_path;      // if set: an LCM log of every message (event time = sim time)
   double map_loss = 0.0;     // test switch: share of LOCAL_MAP messages the planners lose
   uint64_t loss_seed = 1;
+  // A mission (mmh/common/mission.hpp): its waypoints are handed over as GOALs one after another
+  // (ids 1, 2, ...); empty: the single goal sim.goal. sim.follow == "setpoint" also hosts
+  // mmh-setpoint, and the vehicle flies its SETPOINT stream.
+  std::vector<Waypoint> waypoints;
 };
 
 // One planning call as seen on PLAN_RESULT.

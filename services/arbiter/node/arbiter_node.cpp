@@ -139,6 +139,7 @@ void ArbiterNode::flush() {
     ctx_.publish(channels::kArbiterStatus, msg);
     if (d.outcome == arbiter::Outcome::kStopping) logWarn("arbiter: stopping: " + d.detail);
     if (d.outcome == arbiter::Outcome::kUnreachable) logWarn("arbiter: " + d.detail);
+    if (d.outcome == arbiter::Outcome::kGoalMoved) logWarn("arbiter: " + d.detail);
     if (d.outcome == arbiter::Outcome::kFailed && failed_log_.shouldLog()) {
       logWarn("arbiter: decision " + std::to_string(d.decision_seq) + " failed: " + d.detail);
     }
@@ -163,6 +164,7 @@ void ArbiterNode::flush() {
   gauge("answer_latency_p99_ms", arbiter_.latencies().worstAnswerLatency(0.99));
   gauge("map_age_p99_ms", arbiter_.latencies().mapAge(0.99));
   gauge("answer_deadline_ms", arbiter_.latencyBudget().answer_deadline_s);
+  mirror("moved_goals", n.moved_goals);
   if (arbiter_.odometryStale(now)) {
     ctx_.setState(heartbeat_t::STATE_DEGRADED, "ODOMETRY is stale: not planning");
   } else if (arbiter_.latencyBudget().degraded && arbiter_.hasGoal() && map_.hasMap()) {

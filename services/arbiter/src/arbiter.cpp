@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mmh/arbiter/goal_placement.hpp"
 #include "mmh/arbiter/local_target.hpp"
-#include "mmh/arbiter/stopping_trajectory.hpp"
 #include "mmh/common/collision_check.hpp"
+#include "mmh/common/geofence.hpp"
+#include "mmh/common/stopping_trajectory.hpp"
 
 namespace mmh::arbiter {
 namespace {
@@ -44,7 +46,7 @@ bool Arbiter::odometryStale(int64_t now) const {
 
 bool Arbiter::setGoal(int64_t goal_id, const Eigen::Vector3d& goal, int64_t now, std::string* why) {
   now_ = std::max(now_, now);
-  if (hasGoal() && goal_id == goal_.id && (goal - goal_.position).norm() < kSameGoalDistanceM) {
+  if (hasGoal() && goal_id == goal_.id && (goal - goal_.requested).norm() < kSameGoalDistanceM) {
     evaluate(now_);  // its clock may show that ODOMETRY stopped
     return true;
   }
@@ -59,17 +61,47 @@ bool Arbiter::setGoal(int64_t goal_id, const Eigen::Vector3d& goal, int64_t now,
     return false;
   };
   if (!goal.allFinite()) return refuse("not finite");
-  if ((goal.array() < params_.geofence_min_m.array()).any() ||
-      (goal.array() > params_.geofence_max_m.array()).any()) {
-    return refuse("outside the geofence");
+  const std::string outside =
+      geofenceViolation(Geofence{params_.geofence_min_m, params_.geofence_max_m}, goal, "it");
+  if (!outside.empty()) return refuse(outside);
+  GoalPlacement placement;
+  placement.ok = true;
+  placement.position = goal;
+  if (grid_) {
+    placement = placeGoal(*grid_, goal, params_.inflation_m, params_.goal_relocate_radius_m,
+                          params_.geofence_min_m, params_.geofence_max_m);
+    if (!placement.ok) return refuse(placement.why);
   }
-  if (grid_ && grid_->isOccupiedPoint(goal)) return refuse("inside a mapped obstacle");
-  goal_ = Goal{goal_id, goal};
+  goal_ = Goal{goal_id, placement.position, goal};
   phase_ = Phase::kNewGoal;
   chain_.reset();
   progress_.restart(now_);
+  if (placement.moved) reportGoalMoved(placement.why);
   evaluate(now_);
   return true;
+}
+
+void Arbiter::relocateGoalIfBlocked() {
+  if (!hasGoal() || !grid_ || isClearOf(*grid_, goal_.position, params_.inflation_m)) return;
+  const GoalPlacement placement =
+      placeGoal(*grid_, goal_.requested, params_.inflation_m, params_.goal_relocate_radius_m,
+                params_.geofence_min_m, params_.geofence_max_m);
+  // No free point near it: the rounds fail and the stuck detector gives up in time.
+  if (!placement.ok || (placement.position - goal_.position).norm() < kSameGoalDistanceM) return;
+  goal_.position = placement.position;
+  if (phase_ != Phase::kIdle) phase_ = Phase::kNewGoal;
+  chain_.reset();
+  progress_.restart(now_);
+  reportGoalMoved(placement.why);
+}
+
+void Arbiter::reportGoalMoved(const std::string& why) {
+  ++counters_.moved_goals;
+  DecisionOut d;
+  d.outcome = Outcome::kGoalMoved;
+  d.local_target = goal_.position;
+  d.detail = "goal " + std::to_string(goal_.id) + ": " + why;
+  pushDecision(d);
 }
 
 void Arbiter::setAwareness(bool safe, int8_t reason, int64_t goal_id, int64_t /*map_seq*/) {
@@ -84,6 +116,7 @@ void Arbiter::onMapUpdated(const VoxelGrid& grid, int64_t map_seq, int64_t map_u
   latency_.onMapAge((now_ - map_utime) * kUs, now_);
   updateLatencyBudget();
   if (stopped_for_stale_map_ && !mapStale(now_)) stopped_for_stale_map_ = false;
+  if (phase_ != Phase::kReached) relocateGoalIfBlocked();
   // Rule (2): a newly mapped obstacle on the rest of the committed trajectory.
   double eta_s = 0.0;
   if (hasCommitted() && !round_ && phase_ != Phase::kReached && collisionThreat(now_, &eta_s)) {

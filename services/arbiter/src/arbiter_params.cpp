@@ -91,6 +91,7 @@ ArbiterParams loadArbiterParams(const Config& config) {
   p.backoff_min_distance_m = config.getDouble("arbiter.backoff_min_distance_m");
   p.backoff_clearance_m = config.getDouble("arbiter.backoff_clearance_m");
   p.give_up_s = config.getDouble("arbiter.give_up_s");
+  p.goal_relocate_radius_m = config.getDouble("arbiter.goal_relocate_radius_m");
   p.unreachable_retry_s = config.getDouble("arbiter.unreachable_retry_s");
   p.start_position_tolerance_m = config.getDouble("arbiter.start_position_tolerance_m");
   p.start_velocity_tolerance_mps = config.getDouble("arbiter.start_velocity_tolerance_mps");

@@ -52,6 +52,8 @@ const char* toString(Outcome outcome) {
       return "rejected";
     case Outcome::kUnreachable:
       return "unreachable";
+    case Outcome::kGoalMoved:
+      return "goal-moved";
   }
   return "?";
 }

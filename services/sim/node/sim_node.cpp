@@ -17,7 +17,11 @@ SimNode::SimNode(ServiceContext& ctx, const Config& config, const SimOptions& op
       << m.shortest_path_m << " m, time bound " << m.time_bound_s << " s, sensor "
       << options.sensor;
   logInfo(out.str());
-  ctx_.subscribe(channels::kTrajectory, &SimNode::onTrajectory, this);
+  if (sim_.followsSetpoints()) {
+    ctx_.subscribe(channels::kSetpoint, &SimNode::onSetpoint, this);
+  } else {
+    ctx_.subscribe(channels::kTrajectory, &SimNode::onTrajectory, this);
+  }
   ctx_.subscribe(channels::kGoal, &SimNode::onGoal, this);
 }
 
@@ -42,7 +46,28 @@ void SimNode::onGoal(const goal_t& msg) {
             std::to_string(msg.position[0]) + ", " + std::to_string(msg.position[1]) + ", " +
             std::to_string(msg.position[2]) + ")");
   }
-  sim_.setGoal(toVec3(msg.position), msg.goal_id);
+  sim::MissionGoal goal;
+  goal.position = toVec3(msg.position);
+  goal.goal_id = msg.goal_id;
+  goal.waypoint_index = msg.waypoint_index;
+  goal.num_waypoints = msg.num_waypoints;
+  goal.tolerance_m = msg.tolerance_m;
+  goal.stop = msg.stop;
+  sim_.setMissionGoal(goal);
+}
+
+void SimNode::onSetpoint(const setpoint_t& msg) {
+  sim::SetpointSample s;
+  s.utime = msg.header.utime;
+  s.trajectory_id = msg.trajectory_id;
+  s.on_trajectory = msg.state == setpoint_t::STATE_TRACKING || msg.state == setpoint_t::STATE_END;
+  s.state.position = toVec3(msg.position);
+  s.state.velocity = toVec3(msg.velocity);
+  s.state.acceleration = toVec3(msg.acceleration);
+  s.jerk = toVec3(msg.jerk);
+  s.yaw_rad = msg.yaw_rad;
+  sim_.setSetpoint(s);
+  ctx_.increment("setpoints_received");
 }
 
 odometry_t SimNode::makeOdometry() const {
@@ -90,6 +115,17 @@ mission_status_t SimNode::makeMissionStatus() const {
   fromVec3(m.goal, msg.goal);
   // The message has no infinity: without obstacles report a large clearance.
   msg.min_clearance_m = std::isfinite(m.min_clearance_m) ? m.min_clearance_m : 1e6;
+  msg.waypoint_index = m.waypoint_index;
+  msg.num_waypoints = m.num_waypoints;
+  msg.num_arrivals = static_cast<int32_t>(m.arrivals.size());
+  for (const sim::WaypointArrival& a : m.arrivals) {
+    msg.arrival_waypoint.push_back(a.waypoint_index);
+    msg.arrival_time_s.push_back(a.flight_time_s);
+    msg.arrival_speed_mps.push_back(a.speed_mps);
+  }
+  msg.follows_setpoints = m.follows_setpoints;
+  msg.tracking_error_rms_m = m.tracking_error_rms_m;
+  msg.tracking_error_max_m = m.tracking_error_max_m;
   return msg;
 }
 
@@ -121,6 +157,15 @@ void SimNode::step(bool publish_scans) {
     logInfo(out.str());
   }
   if (!m.reached) reported_reached_ = false;
+  if (m.arrivals.size() != arrivals_reported_) {
+    for (; arrivals_reported_ < m.arrivals.size(); ++arrivals_reported_) {
+      const sim::WaypointArrival& a = m.arrivals[arrivals_reported_];
+      std::ostringstream out;
+      out << ctx_.service() << ": waypoint " << a.waypoint_index + 1 << " of " << m.num_waypoints
+          << " reached after " << a.flight_time_s << " s at " << a.speed_mps << " m/s";
+      logInfo(out.str());
+    }
+  }
   if (m.collided && !reported_collision_) {
     reported_collision_ = true;
     ctx_.increment("collisions");

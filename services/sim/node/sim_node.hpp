@@ -1,6 +1,7 @@
 // mmh-sim as a message-driven node: advances the Simulator one step per step() call and publishes
 // ODOMETRY (every step), POINTCLOUD (sensor rate) and MISSION_STATUS (status rate and on reach or
-// collision); takes TRAJECTORY (the committed one) and GOAL (for the mission status). No thread,
+// collision); takes TRAJECTORY (the committed one) or, with --follow setpoint, SETPOINT, and GOAL
+// (for the mission status). No thread,
 // no wall clock: mmh-stack calls step() in lock-step, main.cpp paces it in real time.
 #pragma once
 
@@ -13,6 +14,7 @@
 #include "mmh/mission_status_t.hpp"
 #include "mmh/odometry_t.hpp"
 #include "mmh/pointcloud_t.hpp"
+#include "mmh/setpoint_t.hpp"
 #include "mmh/sim/simulator.hpp"
 #include "mmh/trajectory_t.hpp"
 
@@ -41,11 +43,13 @@ class SimNode {
  private:
   void onTrajectory(const trajectory_t& msg);
   void onGoal(const goal_t& msg);
+  void onSetpoint(const setpoint_t& msg);
 
   ServiceContext& ctx_;
   sim::Simulator sim_;
   bool reported_reached_ = false, reported_collision_ = false;
   int jumps_seen_ = 0;
+  size_t arrivals_reported_ = 0;
 };
 
 }  // namespace mmh

@@ -1,7 +1,10 @@
 #include "mmh/sim/mission.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
 
+#include "mmh/common/mission.hpp"
 #include "mmh/common/polynomial.hpp"
 #include "mmh/sim/shortest_path.hpp"
 
@@ -45,12 +48,34 @@ void MissionMonitor::computeBound() {
 }
 
 void MissionMonitor::setGoal(const Eigen::Vector3d& goal, int64_t goal_id) {
-  metrics_.goal_id = goal_id;
-  if ((goal - metrics_.goal).norm() < 1e-9) return;
-  metrics_.goal = goal;
+  MissionGoal single;
+  single.position = goal;
+  single.goal_id = goal_id;
+  setMissionGoal(single);
+}
+
+void MissionMonitor::setMissionGoal(const MissionGoal& goal) {
+  metrics_.goal_id = goal.goal_id;
+  metrics_.waypoint_index = goal.waypoint_index;
+  metrics_.num_waypoints = goal.num_waypoints;
+  const bool moved = (goal.position - metrics_.goal).norm() >= 1e-9;
+  goal_ = goal;
+  if (!moved) return;
+  metrics_.goal = goal.position;
   metrics_.reached = false;
   metrics_.arrival_utime = -1;
-  computeBound();
+  arrived_at_goal_ = false;
+  if (goal.isLastWaypoint()) computeBound();
+}
+
+bool MissionMonitor::goalReachedNow(const Eigen::Vector3d& position, double speed_mps) const {
+  if (goal_.num_waypoints <= 1)
+    return (position - metrics_.goal).norm() <= params_.goal_tolerance_m;
+  Waypoint w;
+  w.position = metrics_.goal;
+  w.tolerance_m = goal_.tolerance_m > 0.0 ? goal_.tolerance_m : params_.goal_tolerance_m;
+  w.stop = goal_.stop || goal_.isLastWaypoint();
+  return waypointReached(w, position, speed_mps, params_.mission_stop_speed_mps);
 }
 
 bool MissionMonitor::update(int64_t now_utime, const Vehicle& vehicle,
@@ -60,6 +85,13 @@ bool MissionMonitor::update(int64_t now_utime, const Vehicle& vehicle,
   for (const FlownPart& part : flown) {
     metrics_.distance_m += part.trajectory->arcLength(part.t0, part.t1);
     metrics_.energy += jerkEnergy(*part.trajectory, part.t0, part.t1);
+  }
+  if (vehicle.followsSetpoints()) {
+    metrics_.follows_setpoints = true;
+    metrics_.distance_m += vehicle.modelDistance() - model_distance_seen_m_;
+    metrics_.energy += vehicle.modelEnergy() - model_energy_seen_;
+    model_distance_seen_m_ = vehicle.modelDistance();
+    model_energy_seen_ = vehicle.modelEnergy();
   }
   if (vehicle.jumps() != jumps_seen_) {
     metrics_.distance_m += vehicle.jumpDistance() - jumps_seen_m_;
@@ -73,6 +105,13 @@ bool MissionMonitor::update(int64_t now_utime, const Vehicle& vehicle,
   }
   if (metrics_.started) {
     metrics_.flight_time_s = 1e-6 * static_cast<double>(now_utime - metrics_.start_utime);
+    if (const std::optional<double> error = vehicle.trackingError()) {
+      tracking_error_sum_sq_ += *error * *error;
+      ++metrics_.tracking_samples;
+      metrics_.tracking_error_rms_m =
+          std::sqrt(tracking_error_sum_sq_ / static_cast<double>(metrics_.tracking_samples));
+      metrics_.tracking_error_max_m = std::max(metrics_.tracking_error_max_m, *error);
+    }
   }
   const Eigen::Vector3d& p = vehicle.state().position;
   const double clearance = world_.clearance(p);
@@ -83,10 +122,18 @@ bool MissionMonitor::update(int64_t now_utime, const Vehicle& vehicle,
     metrics_.collision_position = p;
     event = true;
   }
-  if (!metrics_.collided && (p - metrics_.goal).norm() <= params_.goal_tolerance_m) {
-    metrics_.reached = true;
-    metrics_.arrival_utime = now_utime;
+  const double speed = vehicle.state().velocity.norm();
+  if (!metrics_.collided && !arrived_at_goal_ && goalReachedNow(p, speed)) {
+    arrived_at_goal_ = true;
     event = true;
+    if (goal_.num_waypoints > 1) {
+      metrics_.arrivals.push_back(
+          WaypointArrival{goal_.waypoint_index, metrics_.flight_time_s, speed});
+    }
+    if (goal_.isLastWaypoint()) {
+      metrics_.reached = true;
+      metrics_.arrival_utime = now_utime;
+    }
   }
   return event;
 }

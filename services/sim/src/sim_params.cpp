@@ -2,6 +2,7 @@
 
 #include "mmh/common/config_constraints.hpp"
 #include "mmh/common/geofence.hpp"
+#include "mmh/common/mission.hpp"
 #include "mmh/common/vehicle_limits.hpp"
 
 namespace mmh::sim {
@@ -31,6 +32,11 @@ SimParams loadSimParams(const Config& c) {
   p.lidar.range_noise_m = c.getDouble("sim.lidar.range_noise_m");
   p.pcd_voxel_m = c.getDouble("sim.pcd_voxel_m");
   p.bound_grid_m = c.getDouble("sim.bound_grid_m");
+  p.tracking.bandwidth_hz = c.getDouble("sim.tracking.bandwidth_hz");
+  p.tracking.damping_ratio = c.getDouble("sim.tracking.damping_ratio");
+  p.tracking.max_acc_mps2 = c.getDouble("sim.tracking.max_acc_mps2");
+  p.tracking.setpoint_timeout_s = c.getDouble("sim.tracking.setpoint_timeout_s");
+  p.mission_stop_speed_mps = loadMissionRules(c).stop_speed_mps;
   p.vehicle_radius_m = c.getDouble("vehicle.radius_m");
   const VehicleLimits vehicle = loadVehicleLimits(c);
   p.max_vel_mps = vehicle.max_vel_mps;

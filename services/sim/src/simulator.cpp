@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "mmh/common/forest.hpp"
+#include "mmh/common/geofence.hpp"
 #include "mmh/sim/ego_forest_world.hpp"
 #include "mmh/sim/forest_world.hpp"
 #include "mmh/sim/pointcloud_world.hpp"
@@ -15,6 +16,26 @@ double initialYaw(const SimOptions& o) {
   if (std::isfinite(o.initial_yaw_deg)) return o.initial_yaw_deg * M_PI / 180.0;
   const Eigen::Vector3d d = o.goal - o.start;
   return d.head<2>().norm() > 1e-9 ? std::atan2(d.y(), d.x()) : 0.0;
+}
+
+// The options, checked before anything is built on them (the time bound of a goal outside the
+// fence would search a space the planners may not fly). A start or goal outside the fence would
+// be refused by the arbiter at once and the flight would only time out: say so now.
+const SimOptions& checkedOptions(const SimOptions& options, const SimParams& params) {
+  if (!options.start.allFinite() || !options.goal.allFinite()) {
+    throw std::runtime_error("start and goal must be finite");
+  }
+  const Geofence fence{params.geofence_min_m, params.geofence_max_m};
+  for (const auto& [point, name] :
+       {std::pair{options.start, "the start"}, std::pair{options.goal, "the goal"}}) {
+    const std::string why = geofenceViolation(fence, point, name);
+    if (!why.empty()) throw std::runtime_error(why);
+  }
+  if (options.follow != "trajectory" && options.follow != "setpoint") {
+    throw std::runtime_error("unknown --follow '" + options.follow +
+                             "' (use trajectory or setpoint)");
+  }
+  return options;
 }
 
 bool endsWith(const std::string& s, const std::string& suffix) {
@@ -74,23 +95,21 @@ std::unique_ptr<World> makeWorld(const SimOptions& options, const SimParams& par
 }
 
 Simulator::Simulator(const SimParams& params, const SimOptions& options)
-    : Simulator(params, options, makeWorld(options, params)) {}
+    : Simulator(params, options, makeWorld(checkedOptions(options, params), params)) {}
 
 Simulator::Simulator(const SimParams& params, const SimOptions& options,
                      std::unique_ptr<World> world)
     : params_(params),
-      options_(options),
+      options_(checkedOptions(options, params)),
       world_(std::move(world)),
       step_us_(std::max<int64_t>(1, std::llround(params.step_s * 1e6))),
       vehicle_(options.start, initialYaw(options), options.start_utime, params),
       sensor_(parseSensorKind(options.sensor), params, static_cast<uint64_t>(options.noise_seed)),
       monitor_(*world_, params, options.start, options.goal) {
-  if (!options.start.allFinite() || !options.goal.allFinite()) {
-    throw std::runtime_error("start and goal must be finite");
-  }
   if (world_->clearance(options.start) < params.vehicle_radius_m) {
     throw std::runtime_error("the start lies inside an obstacle (or closer than vehicle.radius_m)");
   }
+  if (options.follow == "setpoint") vehicle_.followSetpoints();
 }
 
 Simulator::StepResult Simulator::step() {

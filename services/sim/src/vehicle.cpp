@@ -6,10 +6,6 @@
 namespace mmh::sim {
 namespace {
 
-double wrapPi(double a) {
-  return std::remainder(a, 2.0 * M_PI);
-}
-
 double toSeconds(int64_t us) {
   return static_cast<double>(us) * 1e-6;
 }
@@ -18,7 +14,11 @@ double toSeconds(int64_t us) {
 
 Vehicle::Vehicle(const Eigen::Vector3d& start, double yaw_rad, int64_t now_utime,
                  const SimParams& params)
-    : params_(params), now_(now_utime), hold_(start), yaw_(wrapPi(yaw_rad)) {
+    : params_(params),
+      heading_{params.yaw_lookahead_s, params.yaw_time_constant_s, params.max_yaw_rate_dps},
+      now_(now_utime),
+      hold_(start),
+      yaw_(wrapAngle(yaw_rad)) {
   state_.position = start;
 }
 
@@ -28,8 +28,20 @@ Eigen::Quaterniond Vehicle::orientation() const {
 
 void Vehicle::commit(std::shared_ptr<const Trajectory> trajectory, int64_t start_utime,
                      int64_t trajectory_id) {
-  while (!pending_.empty() && pending_.back().start_utime >= start_utime) pending_.pop_back();
-  pending_.push_back(Pending{std::move(trajectory), start_utime, trajectory_id});
+  schedule_.commit(std::move(trajectory), start_utime, trajectory_id);
+}
+
+void Vehicle::followSetpoints() {
+  follows_setpoints_ = true;
+  schedule_.clear();
+  active_.reset();
+}
+
+void Vehicle::setSetpoint(const SetpointSample& setpoint) {
+  if (setpoint_ && setpoint.utime < setpoint_->utime) return;  // an older one came late
+  setpoint_ = setpoint;
+  active_id_ = setpoint.trajectory_id;
+  if (first_utime_ < 0 && setpoint.on_trajectory) first_utime_ = std::max(setpoint.utime, now_);
 }
 
 KinematicState Vehicle::stateAt(int64_t utime) const {
@@ -57,21 +69,27 @@ void Vehicle::flyActive(int64_t from, int64_t to, std::vector<FlownPart>* flown)
 
 void Vehicle::advance(int64_t now_utime, std::vector<FlownPart>* flown) {
   if (now_utime <= now_) return;
+  if (follows_setpoints_) {
+    advanceOnSetpoints(now_utime);
+  } else {
+    advanceOnTrajectory(now_utime, flown);
+  }
+}
+
+void Vehicle::advanceOnTrajectory(int64_t now_utime, std::vector<FlownPart>* flown) {
   int64_t t = now_;
-  while (!pending_.empty() && pending_.front().start_utime <= now_utime) {
-    Pending next = std::move(pending_.front());
-    pending_.pop_front();
-    const int64_t switch_at = std::max(next.start_utime, t);
+  while (std::optional<ScheduledTrajectory> next = schedule_.popDue(now_utime)) {
+    const int64_t switch_at = std::max(next->start_utime, t);
     flyActive(t, switch_at, flown);
     const Eigen::Vector3d before = stateAt(switch_at).position;
-    if (next.trajectory && !next.trajectory->empty()) {
-      active_ = std::move(next.trajectory);
-      active_start_ = next.start_utime;
-      active_id_ = next.id;
+    if (next->trajectory && !next->trajectory->empty()) {
+      active_ = std::move(next->trajectory);
+      active_start_ = next->start_utime;
+      active_id_ = next->id;
       if (first_utime_ < 0) first_utime_ = switch_at;
     } else {
       active_.reset();
-      active_id_ = next.id;
+      active_id_ = next->id;
       hold_ = before;
     }
     last_jump_ = (stateAt(switch_at).position - before).norm();
@@ -89,20 +107,28 @@ void Vehicle::advance(int64_t now_utime, std::vector<FlownPart>* flown) {
   updateYaw(dt);
 }
 
+void Vehicle::advanceOnSetpoints(int64_t now_utime) {
+  const double dt = toSeconds(now_utime - now_);
+  const int64_t step_start = now_;
+  now_ = now_utime;
+  if (!setpoint_) return;  // nothing to track yet: hold at rest
+  // The controller acts on the reference at the start of the step (causal), the error is measured
+  // against the reference at its end.
+  const TrackingParams& tracking = params_.tracking;
+  const KinematicState before = state_;
+  state_ = trackingStep(before, referenceAt(*setpoint_, step_start, tracking), dt, tracking);
+  const KinematicState reference = referenceAt(*setpoint_, now_, tracking);
+  model_distance_m_ += (state_.position - before.position).norm();
+  const Eigen::Vector3d jerk = (state_.acceleration - before.acceleration) / dt;
+  model_energy_ += jerk.squaredNorm() * dt;
+  tracking_error_m_ = (state_.position - reference.position).norm();
+  yaw_ = turnTowards(yaw_, setpoint_->yaw_rad, dt, heading_);
+}
+
 void Vehicle::updateYaw(double dt) {
   if (!active_ || dt <= 0.0) return;
-  // Direction of flight: towards the point yaw_lookahead_s ahead on the trajectory.
-  const double t = toSeconds(now_ - active_start_);
-  const double ahead = std::min(t + params_.yaw_lookahead_s, active_->duration());
-  const Eigen::Vector3d look = active_->position(std::max(0.0, ahead)) - state_.position;
-  if (look.head<2>().norm() < 0.05) return;  // hovering or nearly there: keep the heading
-  const double error = wrapPi(std::atan2(look.y(), look.x()) - yaw_);
-  const double max_rate = params_.max_yaw_rate_dps * M_PI / 180.0;
-  double change = params_.yaw_time_constant_s > 0.0
-                      ? error * std::min(1.0, dt / params_.yaw_time_constant_s)
-                      : error;
-  change = std::clamp(change, -max_rate * dt, max_rate * dt);
-  yaw_ = wrapPi(yaw_ + change);
+  yaw_ =
+      followHeading(yaw_, *active_, toSeconds(now_ - active_start_), state_.position, dt, heading_);
 }
 
 }  // namespace mmh::sim

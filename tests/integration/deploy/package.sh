@@ -24,11 +24,11 @@ deb=$(ls "$out"/mmh-planner_*.deb)
 echo "package: $(basename "$deb") ($(du -k "$deb" | cut -f1) kB)"
 dpkg-deb -c "$deb" | awk '{ print $6 }' | sed 's|^\./|/|' > "$out/files.txt"
 for f in /usr/bin/mmh-mapping /usr/bin/mmh-awareness /usr/bin/mmh-fpm /usr/bin/mmh-som \
-  /usr/bin/mmh-eam /usr/bin/mmh-arbiter /usr/bin/mmh-sim /usr/bin/mmh-goal /usr/bin/mmh-top \
+  /usr/bin/mmh-eam /usr/bin/mmh-arbiter /usr/bin/mmh-setpoint /usr/bin/mmh-sim /usr/bin/mmh-goal /usr/bin/mmh-top \
   /usr/bin/mmh-mission-report /usr/bin/mmh-lcm-check /usr/bin/mmh-config-check \
   /usr/bin/mmh-lcm-spy /usr/share/java/mmh-lcmtypes.jar /usr/lib/mmh-planner/lcm-spy \
   /usr/lib/mmh-planner/record.sh /usr/lib/mmh-planner/launch/service.sh \
-  /usr/lib/mmh-planner/launch/som.sh /usr/lib/mmh-planner/launch/logger.sh \
+  /usr/lib/mmh-planner/launch/som.sh /usr/lib/mmh-planner/launch/setpoint.sh /usr/lib/mmh-planner/launch/logger.sh \
   /usr/lib/mmh-planner/launch/layout.sh /etc/mmh/mmh.yaml /lib/systemd/system/mmh@.service \
   /usr/share/doc/mmh-planner/copyright /usr/share/doc/mmh-planner/changelog.Debian.gz; do
   grep -qx "$f" "$out/files.txt" || fail "$f not in the package"

@@ -3,7 +3,9 @@
 
 #include <optional>
 
+#include "../sim/traj_helpers.hpp"
 #include "mmh/arbiter/arbiter.hpp"
+#include "mmh/arbiter/local_target.hpp"
 #include "mmh/common/collision_check.hpp"
 #include "mmh/common/minco.hpp"
 
@@ -23,13 +25,7 @@ int64_t at(double seconds) {
 // A feasible rest-ending quintic from `start` to `target` (what a simple mode could answer).
 Trajectory simplePlan(const KinematicState& start, const Vector3d& target) {
   for (double T = 0.8 * (target - start.position).norm() + 1.0;; T *= 1.1) {
-    mmh::MincoJerk m;
-    Eigen::Matrix3d head, tail;
-    head << start.position, start.velocity, start.acceleration;
-    tail << target, Vector3d::Zero(), Vector3d::Zero();
-    m.setConditions(head, tail, 1);
-    m.setParameters(Eigen::Matrix3Xd(3, 0), Eigen::VectorXd::Constant(1, T));
-    Trajectory t = m.trajectory();
+    Trajectory t = mmh::test::planFrom(start, target, T);
     if (t.maxSpeed() <= 3.0 && t.maxAcceleration() <= 2.0) return t;
   }
 }
@@ -379,16 +375,18 @@ TEST_F(ArbiterRules, NewGoalTriggersAReplan) {
   EXPECT_NEAR(requests[0].goal.y(), 20.0, 1e-12);
 }
 
-TEST_F(ArbiterRules, GoalsOutsideTheFenceOrInsideObstaclesAreRefused) {
-  putPillar(5.0, 5.0, 0.5);
+TEST_F(ArbiterRules, GoalsOutsideTheFenceOrDeepInsideObstaclesAreRefused) {
+  putPillar(5.0, 5.0, 2.0);  // the nearest free point is farther than goal_relocate_radius_m
   params_.policy = Policy::kMmh;
   Arbiter a(params_);
   a.onMapUpdated(grid_, 1, at(0), at(0));
   std::string why;
   EXPECT_FALSE(a.setGoal(1, Vector3d(100, 0, 1.2), at(0), &why));
-  EXPECT_NE(why.find("geofence"), std::string::npos);
+  EXPECT_NE(why.find("outside the geofence (x = 100 > 30)"), std::string::npos) << why;
+  EXPECT_NE(why.find("geofence.max_m"), std::string::npos) << why;
   EXPECT_FALSE(a.setGoal(2, Vector3d(5.0, 5.0, 1.2), at(0), &why));
   EXPECT_NE(why.find("obstacle"), std::string::npos);
+  EXPECT_NE(why.find("arbiter.goal_relocate_radius_m"), std::string::npos) << why;
   EXPECT_FALSE(a.setGoal(3, Vector3d(NAN, 0, 1), at(0), &why));
   EXPECT_EQ(a.counters().rejected_goals, 3);
   EXPECT_FALSE(a.hasGoal());
@@ -627,4 +625,53 @@ TEST_F(ArbiterRules, LateAnswersLengthenTheBudgetUntilTheLoadGoes) {
   EXPECT_FALSE(a->latencyBudget().degraded);
   EXPECT_EQ(a->latencyBudget().answer_deadline_s, params_.answer_deadline_s);
   EXPECT_EQ(a->latencyBudget().replan_lead_s, params_.replan_lead_s);
+}
+
+// A goal the user put into a tree moves to the nearest free point, and the decision says where.
+TEST_F(ArbiterRules, AGoalInsideAnObstacleMovesToTheNearestFreePointAndSaysWhere) {
+  putPillar(5.0, 0.0, 0.5);
+  params_.policy = Policy::kMmh;
+  Arbiter a(params_);
+  a.onMapUpdated(grid_, ++map_seq_, at(0), at(0));
+  a.setAwareness(true, 0, 1, map_seq_);
+  std::string why;
+  ASSERT_TRUE(a.setGoal(1, Vector3d(5.0, 0.2, 1.25), at(0), &why)) << why;
+  auto decisions = a.takeDecisions();
+  ASSERT_EQ(decisions.size(), 1u);
+  EXPECT_EQ(decisions[0].outcome, Outcome::kGoalMoved);
+  const Vector3d moved = decisions[0].local_target;
+  // Nearest free point: out of the pillar (0.5 m) and its margin (inflation_m), on the goal's
+  // side of it, no farther than the cell straight out along +y, at the goal's height.
+  const Vector3d goal(5.0, 0.2, 1.25);
+  EXPECT_TRUE(isClearOf(grid_, moved, params_.inflation_m));
+  EXPECT_GT(moved.y(), 0.2);
+  EXPECT_LE((moved - goal).norm(),
+            (Vector3d(5.05, 0.2 + 0.5 + params_.inflation_m + 0.1, 1.25) - goal).norm());
+  EXPECT_GE((moved - goal).norm(), 0.5 + params_.inflation_m - 0.2 - 0.1);
+  EXPECT_NEAR(moved.z(), 1.25, 1e-9);
+  EXPECT_NE(decisions[0].detail.find("moved"), std::string::npos);
+  EXPECT_NE(decisions[0].detail.find("nearest free point"), std::string::npos);
+  EXPECT_EQ(a.counters().moved_goals, 1);
+  // The rounds plan to the moved goal; the repeated GOAL message is the same goal.
+  a.onOdometry(rest(Vector3d(0, 0, 1.2)), at(0));
+  auto requests = a.takeRequests();
+  ASSERT_EQ(requests.size(), 1u);
+  EXPECT_NEAR((requests[0].goal - moved).norm(), 0.0, 1e-12);
+  ASSERT_TRUE(a.setGoal(1, Vector3d(5.0, 0.2, 1.25), at(0.5), &why));
+  EXPECT_EQ(a.counters().moved_goals, 1);
+}
+
+TEST_F(ArbiterRules, AGoalThatANewMapPutsIntoAnObstacleMoves) {
+  goal_ = Vector3d(10.0, 0.0, 1.2);  // inside the map window, nothing there yet
+  auto a = started(Policy::kMmh);
+  a->takeRequests();
+  a->takeDecisions();
+  putPillar(10.0, 0.0, 0.3);
+  a->onMapUpdated(grid_, ++map_seq_, at(0.01), at(0.01));
+  auto decisions = a->takeDecisions();
+  ASSERT_FALSE(decisions.empty());
+  EXPECT_EQ(decisions.front().outcome, Outcome::kGoalMoved);
+  EXPECT_TRUE(isClearOf(grid_, decisions.front().local_target, params_.inflation_m));
+  EXPECT_LT((decisions.front().local_target - goal_).norm(), params_.goal_relocate_radius_m);
+  EXPECT_EQ(a->phase(), Phase::kNewGoal);  // the next round plans to the moved goal
 }

@@ -1,8 +1,9 @@
-// Small trajectories with known answers for the simulator tests.
+// Small trajectories with known answers for the simulator, setpoint and arbiter tests.
 #pragma once
 
 #include <memory>
 
+#include "mmh/common/minco.hpp"
 #include "mmh/common/trajectory.hpp"
 
 namespace mmh::test {
@@ -32,6 +33,18 @@ inline Piece minJerk(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double 
 inline std::shared_ptr<const Trajectory> minJerkTraj(const Eigen::Vector3d& a,
                                                      const Eigen::Vector3d& b, double T) {
   return std::make_shared<const Trajectory>(std::vector<Piece>{minJerk(a, b, T)});
+}
+
+// Rest-ending quintic from any state `start` to rest at `target` in T seconds (one MINCO piece):
+// what a mode answers, starting in the requested state.
+inline Trajectory planFrom(const KinematicState& start, const Eigen::Vector3d& target, double T) {
+  MincoJerk m;
+  Eigen::Matrix3d head, tail;
+  head << start.position, start.velocity, start.acceleration;
+  tail << target, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero();
+  m.setConditions(head, tail, 1);
+  m.setParameters(Eigen::Matrix3Xd(3, 0), Eigen::VectorXd::Constant(1, T));
+  return m.trajectory();
 }
 
 }  // namespace mmh::test

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <string>
 
 #include "mmh/common/config.hpp"
 
@@ -15,5 +16,12 @@ struct Geofence {
 
 // Throws ConfigError naming the key.
 Geofence loadGeofence(const Config& config);
+
+bool insideGeofence(const Geofence& fence, const Eigen::Vector3d& p);
+
+// Empty when p lies inside the fence; else a sentence for the user naming `what` (e.g. "the
+// goal"), its coordinates, the axis that is out and the keys geofence.min_m / geofence.max_m.
+std::string geofenceViolation(const Geofence& fence, const Eigen::Vector3d& p,
+                              const std::string& what);
 
 }  // namespace mmh

@@ -14,6 +14,7 @@
 #include "mmh/plan_request_t.hpp"
 #include "mmh/plan_result_t.hpp"
 #include "mmh/pointcloud_t.hpp"
+#include "mmh/setpoint_t.hpp"
 #include "mmh/trajectory_t.hpp"
 
 namespace mmh {
@@ -43,5 +44,6 @@ bool validate(const plan_result_t& msg, std::string* why);
 bool validate(const arbiter_status_t& msg, std::string* why);
 bool validate(const heartbeat_t& msg, std::string* why);
 bool validate(const mission_status_t& msg, std::string* why);
+bool validate(const setpoint_t& msg, std::string* why);
 
 }  // namespace mmh

@@ -89,6 +89,7 @@ struct ArbiterCounters {
   int unreachable_goals = 0;         // times a goal was given up for lack of progress
   int back_offs = 0;                 // rounds that backed off to free space while stuck
   int degraded_periods = 0;          // times the latency budget became degraded
+  int moved_goals = 0;               // goals moved out of an obstacle's margin
 };
 
 class Arbiter {
@@ -97,7 +98,8 @@ class Arbiter {
 
   // --- inputs -----------------------------------------------------------------------------
   // A new goal (or a moved one). Refused (false, with the reason) when outside the geofence or
-  // inside a mapped obstacle.
+  // inside a mapped obstacle's margin with no free point within goal_relocate_radius_m; moved to
+  // the nearest free point when there is one (a kGoalMoved decision says where).
   bool setGoal(int64_t goal_id, const Eigen::Vector3d& goal, int64_t now, std::string* why);
   void setAwareness(bool safe, int8_t reason, int64_t goal_id, int64_t map_seq);
   // The grid must stay alive until the next call (the node owns it).
@@ -132,7 +134,8 @@ class Arbiter {
  private:
   struct Goal {
     int64_t id = 0;
-    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();   // where the vehicle flies to
+    Eigen::Vector3d requested = Eigen::Vector3d::Zero();  // as the GOAL message gave it
   };
   struct Awareness {
     bool safe = true;
@@ -162,6 +165,9 @@ class Arbiter {
   StopView stopView(int64_t now) const;
 
   void evaluate(int64_t now);
+  // A new map put the goal into an obstacle's margin: move it to the nearest free point.
+  void relocateGoalIfBlocked();
+  void reportGoalMoved(const std::string& why);
   void startRound(Trigger trigger, const std::vector<Mode>& modes, int64_t now, bool stuck);
   // No progress for give_up_s: hold (a stop if moving) and report the goal unreachable.
   void giveUp(int64_t now);

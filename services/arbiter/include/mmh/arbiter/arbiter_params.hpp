@@ -91,6 +91,9 @@ struct ArbiterParams {
   double backoff_clearance_m = 0.15;    // ... and this much clearer than inflation_m
   double give_up_s = 30.0;              // no progress this long: unreachable, hold
   double unreachable_retry_s = 5.0;     // while unreachable, one retry this often
+  // A goal inside a mapped obstacle or its margin (inflation_m) moves to the nearest free point
+  // within this radius (goal_placement.hpp); beyond it, it is refused.
+  double goal_relocate_radius_m = 1.5;
   // Answer check (answer_check.hpp).
   double start_position_tolerance_m = 1e-3;  // an answer's start against the requested state
   double start_velocity_tolerance_mps = 1e-2;

@@ -26,6 +26,7 @@ enum class Outcome : int8_t {
   kReached = 4,
   kRejected = 5,
   kUnreachable = 6,
+  kGoalMoved = 7,  // the goal lay in an obstacle's margin: moved to the nearest free point
 };
 
 const char* toString(Mode mode);

@@ -1,7 +1,8 @@
 // Ground-truth mission metrics of docs/benchmark.md, accumulated step by step from what the vehicle
 // actually flew: success (goal within tolerance, no collision), flight time from the first
 // committed trajectory to arrival, arc length, jerk energy (exact per flown trajectory part),
-// smallest clearance, and the time bound on the shortest collision-free path.
+// smallest clearance, and the time bound on the shortest collision-free path; for missions of
+// several waypoints every arrival, and while following setpoints the tracking error.
 #pragma once
 
 #include <Eigen/Core>
@@ -14,6 +15,23 @@
 #include "mmh/sim/world.hpp"
 
 namespace mmh::sim {
+
+// A GOAL as the simulator takes it: one goal, or one waypoint of a mission (goal_t's fields).
+struct MissionGoal {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  int64_t goal_id = 0;
+  int waypoint_index = 0;
+  int num_waypoints = 0;     // 0 or 1: a single goal, reached within sim.goal_tolerance_m
+  double tolerance_m = 0.0;  // 0: sim.goal_tolerance_m
+  bool stop = false;
+  bool isLastWaypoint() const { return waypoint_index + 1 >= num_waypoints; }
+};
+
+struct WaypointArrival {
+  int waypoint_index = 0;
+  double flight_time_s = 0.0;
+  double speed_mps = 0.0;
+};
 
 struct MissionMetrics {
   Eigen::Vector3d start = Eigen::Vector3d::Zero();
@@ -31,6 +49,16 @@ struct MissionMetrics {
   int64_t start_utime = -1, arrival_utime = -1, collision_utime = -1;
   Eigen::Vector3d collision_position = Eigen::Vector3d::Zero();
   int trajectory_jumps = 0;
+  // Missions: the current waypoint, and every arrival in order (reached: at the last one).
+  int waypoint_index = 0;
+  int num_waypoints = 0;
+  std::vector<WaypointArrival> arrivals;
+  // Following setpoints: distance from the vehicle to the reference, from the start of the
+  // flight to arrival.
+  bool follows_setpoints = false;
+  double tracking_error_rms_m = 0.0;
+  double tracking_error_max_m = 0.0;
+  int64_t tracking_samples = 0;
 };
 
 // |jerk|^2 integrated over [t0, t1] of the trajectory's own time, exactly (polynomial integral).
@@ -45,6 +73,10 @@ class MissionMonitor {
   // A goal from a GOAL message. A different position than the current goal starts a new leg:
   // reached is cleared and the bound recomputed; the same position only records the id.
   void setGoal(const Eigen::Vector3d& goal, int64_t goal_id);
+  // The same for a waypoint of a mission: it is arrived at by mission.hpp's rule (its tolerance,
+  // its stop), the mission reached at the last one. The time bound is that of the last leg's goal
+  // from the start (it means something for a single goal only).
+  void setMissionGoal(const MissionGoal& goal);
 
   // Accounts one step: the parts flown since the last update, the vehicle's jumps so far, and
   // its state at now_utime. Returns true if reached or collided became true in this update.
@@ -56,11 +88,18 @@ class MissionMonitor {
  private:
   void computeBound();
 
+  // The current goal is reached: a single goal within sim.goal_tolerance_m, a waypoint by its rule.
+  bool goalReachedNow(const Eigen::Vector3d& position, double speed_mps) const;
+
   const World& world_;
   SimParams params_;
   MissionMetrics metrics_;
+  MissionGoal goal_;
+  bool arrived_at_goal_ = false;
   double jumps_seen_m_ = 0.0;
   int jumps_seen_ = 0;
+  double model_distance_seen_m_ = 0.0, model_energy_seen_ = 0.0;
+  double tracking_error_sum_sq_ = 0.0;
 };
 
 }  // namespace mmh::sim

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 
 #include "mmh/common/config.hpp"
+#include "mmh/sim/tracking_model.hpp"
 
 namespace mmh::sim {
 
@@ -46,6 +47,9 @@ struct SimParams {
   LidarParams lidar;
   double pcd_voxel_m = 0.05;  // PCD worlds are voxelised at this edge for ray casting
   double bound_grid_m = 0.1;  // grid of the A* that bounds the shortest path in PCD worlds
+  TrackingParams tracking;    // mmh-sim --follow setpoint: the flight controller's loop
+  // A mission waypoint with its stop flag is arrived at only below this speed (mission.*).
+  double mission_stop_speed_mps = 0.2;
   // Shared keys.
   double vehicle_radius_m = 0.15;
   double max_vel_mps = 3.0;

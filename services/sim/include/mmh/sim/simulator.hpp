@@ -34,6 +34,9 @@ struct SimOptions {
   // Initial heading; NaN: towards the goal.
   double initial_yaw_deg = std::numeric_limits<double>::quiet_NaN();
   int64_t start_utime = kLockstepStartUtime;
+  // What the vehicle flies: "trajectory" (the committed TRAJECTORY, exactly) or "setpoint" (the
+  // SETPOINT stream of mmh-setpoint, through the tracking model).
+  std::string follow = "trajectory";
 };
 
 // The world the options describe. Throws std::runtime_error with the reason (unreadable PCD,
@@ -43,7 +46,8 @@ SensorKind parseSensorKind(const std::string& name);  // throws std::runtime_err
 
 class Simulator {
  public:
-  // Throws std::runtime_error for bad options (see makeWorld; also a start inside an obstacle).
+  // Throws std::runtime_error for bad options (see makeWorld; also a start inside an obstacle, a
+  // start or goal outside the geofence, an unknown --follow).
   Simulator(const SimParams& params, const SimOptions& options);
   Simulator(const SimParams& params, const SimOptions& options, std::unique_ptr<World> world);
 
@@ -60,6 +64,11 @@ class Simulator {
     vehicle_.commit(std::move(trajectory), start_utime, trajectory_id);
   }
   void setGoal(const Eigen::Vector3d& goal, int64_t goal_id) { monitor_.setGoal(goal, goal_id); }
+  // A goal that is one waypoint of a mission (goal_t's mission fields).
+  void setMissionGoal(const MissionGoal& goal) { monitor_.setMissionGoal(goal); }
+  // Following setpoints: the newest SETPOINT.
+  void setSetpoint(const SetpointSample& setpoint) { vehicle_.setSetpoint(setpoint); }
+  bool followsSetpoints() const { return vehicle_.followsSetpoints(); }
 
   int64_t nowUtime() const { return vehicle_.nowUtime(); }
   int64_t stepUs() const { return step_us_; }

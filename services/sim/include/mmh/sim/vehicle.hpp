@@ -1,19 +1,23 @@
-// The simulated vehicle: follows the committed trajectory exactly (as the paper's simulator
-// does), holds its position with zero velocity when it has none or when it ran out, and takes a
-// new trajectory over at that trajectory's start time (the old one is flown until then). Yaw
-// follows the direction of flight, smoothed and rate-limited, so the forward camera looks where
-// the vehicle goes.
+// The simulated vehicle. By default it follows the committed trajectory exactly (as the paper's
+// simulator does), holds its position with zero velocity when it has none or when it ran out,
+// and takes a new trajectory over at that trajectory's start time (the old one is flown until
+// then). With followSetpoints() it flies the SETPOINT stream through a tracking model instead
+// (tracking_model.hpp), as a flight controller would. Yaw follows the direction of flight,
+// smoothed and rate-limited, so the forward camera looks where the vehicle goes.
 #pragma once
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
-#include <deque>
 #include <memory>
+#include <optional>
 #include <vector>
 
+#include "mmh/common/heading.hpp"
 #include "mmh/common/trajectory.hpp"
+#include "mmh/common/trajectory_schedule.hpp"
 #include "mmh/sim/sim_params.hpp"
+#include "mmh/sim/tracking_model.hpp"
 
 namespace mmh::sim {
 
@@ -33,7 +37,14 @@ class Vehicle {
   void commit(std::shared_ptr<const Trajectory> trajectory, int64_t start_utime,
               int64_t trajectory_id);
 
-  // Advances to now_utime, appending the trajectory parts flown since the last call to `flown`.
+  // From now on fly the setpoints given to setSetpoint() through the tracking model (and ignore
+  // commit()). Until the first setpoint the vehicle holds where it is.
+  void followSetpoints();
+  bool followsSetpoints() const { return follows_setpoints_; }
+  void setSetpoint(const SetpointSample& setpoint);
+
+  // Advances to now_utime, appending the trajectory parts flown since the last call to `flown`
+  // (none while following setpoints: see modelDistance, modelEnergy).
   void advance(int64_t now_utime, std::vector<FlownPart>* flown);
 
   int64_t nowUtime() const { return now_; }
@@ -42,35 +53,44 @@ class Vehicle {
   Eigen::Quaterniond orientation() const;
   int64_t activeTrajectoryId() const { return active_id_; }
   bool hasTrajectory() const { return active_ != nullptr; }
-  // Start time of the first trajectory that took over; -1 before that.
+  // Start time of the first trajectory that took over (following setpoints: of the first setpoint
+  // on a trajectory); -1 before that.
   int64_t firstTrajectoryUtime() const { return first_utime_; }
   // A new trajectory that did not start where the vehicle was (more than 1 mm away): the vehicle
   // jumps, since it follows the trajectory exactly. Counted and summed for the mission metrics.
   int jumps() const { return jumps_; }
   double jumpDistance() const { return jump_distance_; }
   double lastJump() const { return last_jump_; }
+  // Following setpoints: the arc length flown and the integral of |jerk|^2 dt so far, and the
+  // distance from the vehicle to the reference at the last step (nullopt before a setpoint).
+  double modelDistance() const { return model_distance_m_; }
+  double modelEnergy() const { return model_energy_; }
+  std::optional<double> trackingError() const { return tracking_error_m_; }
 
  private:
-  struct Pending {
-    std::shared_ptr<const Trajectory> trajectory;
-    int64_t start_utime;
-    int64_t id;
-  };
   KinematicState stateAt(int64_t utime) const;
   void flyActive(int64_t from, int64_t to, std::vector<FlownPart>* flown) const;
+  void advanceOnTrajectory(int64_t now_utime, std::vector<FlownPart>* flown);
+  void advanceOnSetpoints(int64_t now_utime);
   void updateYaw(double dt);
 
   SimParams params_;
+  HeadingParams heading_;
   int64_t now_;
   KinematicState state_;
   Eigen::Vector3d hold_;  // position held without a trajectory
   std::shared_ptr<const Trajectory> active_;
   int64_t active_start_ = 0, active_id_ = 0;
-  std::deque<Pending> pending_;
+  TrajectorySchedule schedule_;
   int64_t first_utime_ = -1;
   int jumps_ = 0;
   double jump_distance_ = 0.0, last_jump_ = 0.0;
   double yaw_ = 0.0;
+  // Following setpoints.
+  bool follows_setpoints_ = false;
+  std::optional<SetpointSample> setpoint_;
+  double model_distance_m_ = 0.0, model_energy_ = 0.0;
+  std::optional<double> tracking_error_m_;
 };
 
 }  // namespace mmh::sim

@@ -1,12 +1,13 @@
 // Braking trajectory: from a moving state to rest along the direction of motion with
 // |acceleration| <= a_max (checked exactly). What the arbiter commits when no mode gave a usable
-// answer and danger is ahead, or when its inputs go stale.
+// answer and danger is ahead, or when its inputs go stale, and what mmh-setpoint brakes along when
+// its watchdog trips.
 #pragma once
 
 #include "mmh/common/trajectory.hpp"
 #include "mmh/common/voxel_grid.hpp"
 
-namespace mmh::arbiter {
+namespace mmh {
 
 Trajectory makeStoppingTrajectory(const KinematicState& start, double max_acc_mps2,
                                   double max_vel_mps);
@@ -45,4 +46,4 @@ Trajectory chooseStoppingTrajectory(const VoxelGrid* grid, const Trajectory& pat
 // at most limit_m.
 double minOccupiedDistance(const VoxelGrid& grid, const Trajectory& traj, double limit_m);
 
-}  // namespace mmh::arbiter
+}  // namespace mmh

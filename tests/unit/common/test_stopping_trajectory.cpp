@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "mmh/arbiter/stopping_trajectory.hpp"
 #include "mmh/common/minco.hpp"
+#include "mmh/common/stopping_trajectory.hpp"
 
 TEST(StoppingTrajectory, BrakesToRestWithinTheLimitsWithoutAJump) {
   for (double speed : {0.5, 1.5, 3.0}) {
@@ -11,7 +11,7 @@ TEST(StoppingTrajectory, BrakesToRestWithinTheLimitsWithoutAJump) {
     s.position = Eigen::Vector3d(1, 2, 1.2);
     s.velocity = Eigen::Vector3d(speed * 0.6, speed * 0.8, 0.0);
     s.acceleration = Eigen::Vector3d(0.3, -0.2, 0.0);
-    mmh::Trajectory t = mmh::arbiter::makeStoppingTrajectory(s, 2.0, 3.0);
+    mmh::Trajectory t = mmh::makeStoppingTrajectory(s, 2.0, 3.0);
     EXPECT_LT((t.position(0) - s.position).norm(), 1e-9);
     EXPECT_LT((t.velocity(0) - s.velocity).norm(), 1e-9);
     EXPECT_LT((t.acceleration(0) - s.acceleration).norm(), 1e-9);
@@ -31,7 +31,7 @@ TEST(StoppingTrajectory, BrakesToRestWithinTheLimitsWithoutAJump) {
 TEST(StoppingTrajectory, AtRestItHolds) {
   mmh::KinematicState s;
   s.position = Eigen::Vector3d(1, 2, 3);
-  mmh::Trajectory t = mmh::arbiter::makeStoppingTrajectory(s, 2.0, 3.0);
+  mmh::Trajectory t = mmh::makeStoppingTrajectory(s, 2.0, 3.0);
   EXPECT_TRUE(t.position(0.5).isApprox(s.position));
   EXPECT_LT(t.maxSpeed(), 1e-12);
 }
@@ -46,7 +46,7 @@ TEST(StoppingTrajectory, StartAtOrAboveTheAccelerationLimitStopsPromptly) {
     s.position = Eigen::Vector3d(0, 0, 1.2);
     s.velocity = Eigen::Vector3d(3.0, 0.0, 0.0);
     s.acceleration = acc;
-    const mmh::Trajectory t = mmh::arbiter::makeStoppingTrajectory(s, 2.0, 3.0);
+    const mmh::Trajectory t = mmh::makeStoppingTrajectory(s, 2.0, 3.0);
     EXPECT_LT((t.acceleration(0) - acc).norm(), 1e-9);
     EXPECT_LT(t.velocity(t.duration()).norm(), 1e-6);
     EXPECT_LE(t.maxAcceleration(), std::max(2.0, acc.norm()) * 1.01) << acc.transpose();
@@ -59,10 +59,10 @@ TEST(StoppingTrajectory, RestoppingAStopInProgressKeepsBraking) {
   mmh::KinematicState s;
   s.position = Eigen::Vector3d(0, 0, 1.2);
   s.velocity = Eigen::Vector3d(3.0, 0.0, 0.0);
-  const mmh::Trajectory first = mmh::arbiter::makeStoppingTrajectory(s, 2.0, 3.0);
+  const mmh::Trajectory first = mmh::makeStoppingTrajectory(s, 2.0, 3.0);
   const Eigen::Vector3d end = first.position(first.duration());
   for (double t0 : {0.2, 0.5, 0.9}) {
-    const mmh::Trajectory again = mmh::arbiter::makeStoppingTrajectory(first, t0, 2.0, 3.0);
+    const mmh::Trajectory again = mmh::makeStoppingTrajectory(first, t0, 2.0, 3.0);
     const mmh::KinematicState at = first.state(t0);
     EXPECT_LT((again.acceleration(0) - at.acceleration).norm(), 1e-9);
     EXPECT_LE(again.maxAcceleration(), std::max(2.0, at.acceleration.norm()) * 1.01);
@@ -116,19 +116,19 @@ TEST(StoppingTrajectory, ChoosesTheStopThatKeepsClearOfTheObstacle) {
   const mmh::VoxelGrid clear = gridWithPillar(1.75, 0.85, 0.0);
   const mmh::VoxelGrid pillar = gridWithPillar(1.75, 0.85, 0.3);
   const double clearance = 0.25;
-  const mmh::Trajectory along = mmh::arbiter::makeStoppingTrajectory(path, 0.0, 2.0, 3.0);
-  ASSERT_LT(mmh::arbiter::minOccupiedDistance(pillar, along, 1.0), 0.15);
+  const mmh::Trajectory along = mmh::makeStoppingTrajectory(path, 0.0, 2.0, 3.0);
+  ASSERT_LT(mmh::minOccupiedDistance(pillar, along, 1.0), 0.15);
 
   const mmh::Trajectory chosen =
-      mmh::arbiter::chooseStoppingTrajectory(&pillar, path, 0.0, 2.0, 3.0, clearance, kTouch);
-  EXPECT_GE(mmh::arbiter::minOccupiedDistance(pillar, chosen, 1.0), clearance);
+      mmh::chooseStoppingTrajectory(&pillar, path, 0.0, 2.0, 3.0, clearance, kTouch);
+  EXPECT_GE(mmh::minOccupiedDistance(pillar, chosen, 1.0), clearance);
   EXPECT_LT((chosen.position(0) - path.position(0)).norm(), 1e-9);
   EXPECT_LT((chosen.velocity(0) - path.velocity(0)).norm(), 1e-9);
   EXPECT_LT(chosen.velocity(chosen.duration()).norm(), 1e-6);
   EXPECT_LE(chosen.maxAcceleration(), 2.0 + 1e-6);
 
   const mmh::Trajectory kept =
-      mmh::arbiter::chooseStoppingTrajectory(&clear, path, 0.0, 2.0, 3.0, clearance, kTouch);
+      mmh::chooseStoppingTrajectory(&clear, path, 0.0, 2.0, 3.0, clearance, kTouch);
   EXPECT_LT((kept.position(kept.duration()) - along.position(along.duration())).norm(), 1e-9);
 }
 
@@ -138,8 +138,8 @@ TEST(StoppingTrajectory, ChoosesTheStopThatKeepsClearOfTheObstacle) {
 // into unknown space, where anything may stand: the stop along the path is kept.
 TEST(StoppingTrajectory, PrefersKnownSpaceToMoreClearanceFromAMarginCell) {
   const mmh::Trajectory path = bendingPath();
-  const mmh::Trajectory along = mmh::arbiter::makeStoppingTrajectory(path, 0.0, 2.0, 3.0);
-  const mmh::Trajectory straight = mmh::arbiter::makeStoppingTrajectory(path.state(0.0), 2.0, 3.0);
+  const mmh::Trajectory along = mmh::makeStoppingTrajectory(path, 0.0, 2.0, 3.0);
+  const mmh::Trajectory straight = mmh::makeStoppingTrajectory(path.state(0.0), 2.0, 3.0);
   std::vector<Eigen::Vector3d> samples;
   for (double t = 0.0; t <= along.duration(); t += 0.005) samples.push_back(along.position(t));
 
@@ -161,8 +161,8 @@ TEST(StoppingTrajectory, PrefersKnownSpaceToMoreClearanceFromAMarginCell) {
     }
   }
   ASSERT_TRUE(edge_cell_set);
-  const mmh::arbiter::StopAssessment along_seen = mmh::arbiter::assessStop(g, along, 0.35);
-  const mmh::arbiter::StopAssessment straight_seen = mmh::arbiter::assessStop(g, straight, 0.35);
+  const mmh::StopAssessment along_seen = mmh::assessStop(g, along, 0.35);
+  const mmh::StopAssessment straight_seen = mmh::assessStop(g, straight, 0.35);
   ASSERT_GE(along_seen.clearance_m, kTouch);
   ASSERT_LT(along_seen.clearance_m, 0.25);
   ASSERT_GT(straight_seen.clearance_m, along_seen.clearance_m);
@@ -170,14 +170,14 @@ TEST(StoppingTrajectory, PrefersKnownSpaceToMoreClearanceFromAMarginCell) {
   ASSERT_GT(straight_seen.unknown_m, 0.2) << "tube " << kTube;
 
   const mmh::Trajectory chosen =
-      mmh::arbiter::chooseStoppingTrajectory(&g, path, 0.0, 2.0, 3.0, 0.25, kTouch);
+      mmh::chooseStoppingTrajectory(&g, path, 0.0, 2.0, 3.0, 0.25, kTouch);
   EXPECT_LT((chosen.position(chosen.duration()) - along.position(along.duration())).norm(), 1e-9);
 }
 
 // The order of stops: touching an occupied cell is worst, then unknown space, then clearance.
 TEST(StoppingTrajectory, SaferStopOrdersTouchThenUnknownThenClearance) {
-  using mmh::arbiter::saferStop;
-  using mmh::arbiter::StopAssessment;
+  using mmh::saferStop;
+  using mmh::StopAssessment;
   const StopAssessment touching{0.15, 0.0}, blind{0.3, 1.0}, known_near{0.21, 0.0},
       known_far{0.3, 0.0};
   EXPECT_TRUE(saferStop(blind, touching, kTouch));

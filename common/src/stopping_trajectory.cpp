@@ -1,4 +1,4 @@
-#include "mmh/arbiter/stopping_trajectory.hpp"
+#include "mmh/common/stopping_trajectory.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include "mmh/common/collision_check.hpp"
 #include "mmh/common/minco.hpp"
 
-namespace mmh::arbiter {
+namespace mmh {
 namespace {
 
 // A start may already accelerate harder than a_max (an emergency answer is accepted 5% over it):
@@ -165,4 +165,4 @@ Trajectory chooseStoppingTrajectory(const VoxelGrid* grid, const Trajectory& pat
   return saferStop(assessStop(*grid, straight, limit), along_seen, touch_m) ? straight : along;
 }
 
-}  // namespace mmh::arbiter
+}  // namespace mmh
