@@ -199,6 +199,20 @@ TEST(ScenePlayback, PlayingOnSendsWhatTheLiveViewerSent) {
   EXPECT_EQ(playback.nowUtime(), us(9.0));
 }
 
+TEST(ScenePlayback, MessagesStampedZeroBelongToTheStartOfTheFlight) {
+  std::vector<RecordedMessage> log;
+  heartbeat_t hb{};  // a service's first heartbeat, before its clock saw a message
+  hb.service = "mmh-sim";
+  log.emplace_back(hb);
+  for (const RecordedMessage& m : recordedFlight()) log.push_back(m);
+  ScenePlayback playback(log);
+  EXPECT_EQ(playback.startUtime(), us(1.0));
+  playback.seek(0);
+  EXPECT_EQ(playback.nowUtime(), us(1.0));
+  EXPECT_EQ(snapshotOf(playback.scene()), liveAt(log, us(1.0)));
+  EXPECT_EQ(playback.scene().snapshot(topics::kHeartbeat).size(), 3u);  // and the two at 1 s
+}
+
 TEST(ScenePlayback, AnEmptyLogIsAnEmptyScene) {
   ScenePlayback playback({});
   playback.seek(us(5.0));

@@ -26,6 +26,7 @@ ScenePlayback::ScenePlayback(std::vector<RecordedMessage> messages, SceneOptions
   for (const RecordedMessage& m : messages_) {
     latest = std::max(latest, utimeOf(m));
     clock_.push_back(latest);
+    if (start_utime_ == 0) start_utime_ = latest;
   }
   checkpoint_spacing_us_ =
       std::max(kMinCheckpointSpacingUs, (endUtime() - startUtime()) / kMaxCheckpoints + 1);
@@ -51,12 +52,13 @@ void ScenePlayback::applyUpTo(int64_t utime, SceneMessages* out) {
 
 void ScenePlayback::seek(int64_t utime) {
   utime = std::clamp(utime, startUtime(), endUtime());
-  if (utime < now_) {
-    // The last checkpoint that does not go beyond t: its messages are all within t.
-    auto it = std::upper_bound(
-        checkpoints_.begin(), checkpoints_.end(), utime,
-        [this](int64_t t, const Checkpoint& c) { return c.next > 0 && clock_[c.next - 1] > t; });
-    const Checkpoint& from = *std::prev(it);
+  // The last checkpoint that does not go beyond t (its messages are all within t): from there
+  // when t is earlier than now, or when it is further on than what the scene has applied.
+  auto it = std::upper_bound(
+      checkpoints_.begin(), checkpoints_.end(), utime,
+      [this](int64_t t, const Checkpoint& c) { return c.next > 0 && checkpointClock(c) > t; });
+  const Checkpoint& from = *std::prev(it);
+  if (utime < now_ || from.next > next_) {
     scene_ = from.scene;
     next_ = from.next;
   }

@@ -23,10 +23,12 @@ int64_t utimeOf(const RecordedMessage& message);
 
 class ScenePlayback {
  public:
-  // Starts at the first message's time, with nothing applied yet beyond it.
+  // Starts at the first message's time, with nothing applied yet beyond it. Messages stamped 0
+  // (a service's first HEARTBEAT, before its clock has seen a message) belong to the start and
+  // do not make it.
   explicit ScenePlayback(std::vector<RecordedMessage> messages, SceneOptions options = {});
 
-  int64_t startUtime() const { return clock_.empty() ? 0 : clock_.front(); }
+  int64_t startUtime() const { return start_utime_; }
   int64_t endUtime() const { return clock_.empty() ? 0 : clock_.back(); }
   int64_t nowUtime() const { return now_; }
   size_t numMessages() const { return messages_.size(); }
@@ -45,6 +47,7 @@ class ScenePlayback {
 
   std::vector<RecordedMessage> messages_;
   std::vector<int64_t> clock_;  // running maximum of header.utime over messages_
+  int64_t start_utime_ = 0;     // the first non-zero clock
   SceneOptions options_;
   SceneState scene_;
   size_t next_ = 0;  // first message not in the scene
