@@ -13,6 +13,8 @@
 # that needs a multicast route (see docs/operations.md#several-machines). --spy opens the project's lcm-spy alongside.
 # --viewer starts mmh-viewer (docs/viewer.md) and prints its URL; a browser must reach it, so it
 # implies --host-network, and the viewer stays up after the mission until Enter is pressed.
+# The demo's planners publish their debug channel (som/eam.publish_debug, off on a vehicle), so
+# the viewer shows SOM's corridors and EAM's guides, live or later with mmh-viewer --log.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 density=0.1 seed=7 sensor=depth spy=0 host_network=0 viewer=0
@@ -71,8 +73,11 @@ if [ $viewer = 1 ]; then
   "$root/deploy/launch/viewer.sh" start --run-dir "$run" -- --bind 127.0.0.1:8765
   echo "demo: ground station: open http://127.0.0.1:8765/ in a browser"
 fi
+# The default configuration with the planners' debug channel on (PLAN_DEBUG).
+config=$run/demo.yaml
+sed 's/^\(  publish_debug:\) false/\1 true/' "$root/deploy/config/default.yaml" > "$config"
 echo "demo: starting mapping, awareness, FPM, SOM, EAM, arbiter and the simulator (one process each)"
-"$root/deploy/launch/stack.sh" start --run-dir "$run" \
+"$root/deploy/launch/stack.sh" start --run-dir "$run" --config "$config" \
   --sim-args "--world forest --density $density --seed $seed --sensor $sensor --realtime" \
   --goal "$goal" | sed 's/^/  /'
 echo "demo: flying to $goal (watch: $bin/mmh-top in the same network; logs in $run)"

@@ -218,6 +218,8 @@ std::vector<KeySpec> buildKeys() {
                     "Verification: relative tolerance on v_max / a_max (exact maxima)")),
       optional(real("som.verify_corridor_tolerance_m", 0.0, 0.5, "0.02",
                     "Verification: tolerance outside the corridor")),
+      optional(flag("som.publish_debug", "false",
+                    "Publish the A* path and corridor of each answer on PLAN_DEBUG (viewer)")),
       // eam
       real("eam.knot_span_s", 0.02, 2.0, "0.2", "Initial knot span of the uniform cubic B-spline"),
       real("eam.lambda_smooth_open", 1e-9, 1e9, "1.0", "lambda1 (smoothness), open space"),
@@ -260,6 +262,9 @@ std::vector<KeySpec> buildKeys() {
            "A start inside the inflated margin may cross it this far"),
       real("eam.start_escape_clearance_m", 0.0, 2.0, "0.28",
            "... only outwards, never nearer to occupied cells than the start or this"),
+      optional(
+          flag("eam.publish_debug", "false",
+               "Publish the A* guides and {p, v} pairs of each answer on PLAN_DEBUG (viewer)")),
       // arbiter
       choice("arbiter.policy", {"mmh", "mmh-no-lazy", "mmh-no-awareness", "ego", "som"}, "mmh",
              "Method: the full MMH, its ablations, or a baseline (EAM / SOM alone)"),

@@ -1,6 +1,7 @@
 #include "mmh/common/message_validation.hpp"
 
 #include <cmath>
+#include <vector>
 
 #include "mmh/common/local_map_codec.hpp"
 
@@ -33,6 +34,29 @@ bool validIdentifier(const std::string& s) {
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return false;
   }
   return true;
+}
+
+bool finiteFloats(const std::vector<float>& v) {
+  for (float x : v) {
+    if (!std::isfinite(x) || std::abs(x) > kMaxAbsCoordinate_m) return false;
+  }
+  return true;
+}
+
+// A count field that agrees with its array, within kMaxDebugValues.
+template <class T>
+bool sized(int32_t n, const std::vector<T>& values) {
+  return n >= 0 && n <= kMaxDebugValues && static_cast<size_t>(n) == values.size();
+}
+
+// Counts that split `total` values into groups of `per` values times each count.
+bool partitions(const std::vector<int32_t>& counts, int per, size_t total) {
+  int64_t sum = 0;
+  for (int32_t n : counts) {
+    if (n < 0) return false;
+    sum += n;
+  }
+  return sum * per == static_cast<int64_t>(total);
 }
 
 bool validQuaternion(const double* q) {
@@ -224,6 +248,30 @@ bool validate(const setpoint_t& msg, std::string* why) {
     return fail(why, "velocity, acceleration or jerk is not finite or absurd");
   const double yaw[2] = {msg.yaw_rad, msg.yaw_rate_radps};
   if (!finiteVec(yaw, 2, 1e3)) return fail(why, "yaw or yaw rate is not finite");
+  return true;
+}
+
+bool validate(const plan_debug_t& msg, std::string* why) {
+  if (!validate(msg.header, why)) return false;
+  if (msg.mode < plan_request_t::MODE_FPM || msg.mode > plan_request_t::MODE_EAM)
+    return fail(why, "unknown mode " + std::to_string(msg.mode));
+  if (!sized(msg.num_paths, msg.path_points) || !sized(msg.num_path_coords, msg.path_xyz) ||
+      !sized(msg.num_polytopes, msg.polytope_faces) || !sized(msg.num_face_values, msg.faces) ||
+      !sized(msg.num_control_coords, msg.control_xyz) ||
+      !sized(msg.num_pairs, msg.pair_control_point) || !sized(msg.num_pair_coords, msg.pair_p) ||
+      msg.pair_v.size() != msg.pair_p.size())
+    return fail(why, "a count disagrees with its data");
+  if (!partitions(msg.path_points, 3, msg.path_xyz.size()) ||
+      !partitions(msg.polytope_faces, 4, msg.faces.size()) || msg.control_xyz.size() % 3 != 0 ||
+      msg.pair_p.size() != 3 * msg.pair_control_point.size())
+    return fail(why, "the per-path, per-polytope or per-pair counts disagree with the data");
+  const int64_t control_points = static_cast<int64_t>(msg.control_xyz.size() / 3);
+  for (int32_t q : msg.pair_control_point) {
+    if (q < 0 || q >= control_points) return fail(why, "a pair names no control point");
+  }
+  if (!finiteFloats(msg.path_xyz) || !finiteFloats(msg.faces) || !finiteFloats(msg.control_xyz) ||
+      !finiteFloats(msg.pair_p) || !finiteFloats(msg.pair_v))
+    return fail(why, "non-finite or absurd coordinates");
   return true;
 }
 

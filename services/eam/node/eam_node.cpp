@@ -6,7 +6,10 @@
 namespace mmh {
 
 EamNode::EamNode(ServiceContext& ctx, const Config& config)
-    : ctx_(ctx), map_(config.getDouble("map.inflation_m")), planner_(eam::loadEamParams(config)) {
+    : ctx_(ctx),
+      map_(config.getDouble("map.inflation_m")),
+      planner_(eam::loadEamParams(config)),
+      publish_debug_(config.getBool("eam.publish_debug")) {
   ctx_.subscribe(channels::kLocalMap, &EamNode::onLocalMap, this);
   ctx_.subscribe(channels::kPlanRequestEam, &EamNode::onPlanRequest, this);
 }
@@ -94,6 +97,11 @@ void EamNode::onPlanRequest(const plan_request_t& req) {
            std::to_string(result.stats.max_acc));
   out.compute_us = wallTimeUs() - started;
   ctx_.publish(channels::kPlanResult, out);
+  if (publish_debug_) {
+    plan_debug_t debug =
+        toDebugMsg(eam::debugOf(result), req.request_id, plan_request_t::MODE_EAM, result.ok);
+    ctx_.publish(channels::kPlanDebug, debug);
+  }
 }
 
 }  // namespace mmh

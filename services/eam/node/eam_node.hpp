@@ -30,6 +30,7 @@ class EamNode {
   ServiceContext& ctx_;
   LocalMapReceiver map_;
   eam::Planner planner_;
+  bool publish_debug_ = false;  // eam.publish_debug: PLAN_DEBUG after each answer
 };
 
 }  // namespace mmh

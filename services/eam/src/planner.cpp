@@ -643,4 +643,16 @@ PlanResult Planner::plan(const VoxelGrid& grid, const PlanRequest& req) {
   return fail(r, reason, detail);
 }
 
+PlanDebug debugOf(const PlanResult& result) {
+  PlanDebug debug;
+  debug.paths = result.guide_paths;
+  const Eigen::Matrix3Xd& q = result.spline.controlPoints();
+  for (Eigen::Index i = 0; i < q.cols(); ++i) debug.control_points.push_back(q.col(i));
+  for (size_t i = 0; i < result.pairs.size() && i < debug.control_points.size(); ++i) {
+    for (const AnchorPair& pair : result.pairs[i])
+      debug.pairs.push_back({static_cast<int>(i), pair.p, pair.v});
+  }
+  return debug;
+}
+
 }  // namespace mmh::eam

@@ -11,7 +11,8 @@ namespace mmh {
 SomNode::SomNode(ServiceContext& ctx, const Config& config)
     : ctx_(ctx),
       receiver_(config.getDouble("map.inflation_m")),
-      planner_(som::loadSomParams(config)) {
+      planner_(som::loadSomParams(config)),
+      publish_debug_(config.getBool("som.publish_debug")) {
   ctx_.subscribe(channels::kLocalMap, &SomNode::onLocalMap, this);
   ctx_.subscribe(channels::kPlanRequestSom, &SomNode::onPlanRequest, this);
 }
@@ -66,6 +67,11 @@ void SomNode::onPlanRequest(const plan_request_t& req) {
   ctx_.increment("optimize_us_total", static_cast<int64_t>(t.optimize.wall_us));
   ctx_.increment("verify_us_total", static_cast<int64_t>(t.verify.wall_us));
   answer(req, result, compute_us);
+  if (publish_debug_) {
+    plan_debug_t debug =
+        toDebugMsg(som::debugOf(last_), req.request_id, plan_request_t::MODE_SOM, last_.ok());
+    ctx_.publish(channels::kPlanDebug, debug);
+  }
 }
 
 void SomNode::answer(const plan_request_t& req, plan_result_t& result, int64_t compute_us) {

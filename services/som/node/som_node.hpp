@@ -33,6 +33,7 @@ class SomNode {
   LocalMapReceiver receiver_;
   som::Planner planner_;
   som::PlanOutput last_;
+  bool publish_debug_ = false;  // som.publish_debug: PLAN_DEBUG after each answer
 };
 
 }  // namespace mmh

@@ -170,4 +170,11 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
   return finish(PlanStatus::kOk, "");
 }
 
+PlanDebug debugOf(const PlanOutput& out) {
+  PlanDebug debug;
+  if (!out.path.empty()) debug.paths.push_back(out.path);
+  for (const Polytope& poly : out.corridor.polytopes) debug.polytopes.push_back(poly.halfspaces());
+  return debug;
+}
+
 }  // namespace mmh::som

@@ -270,3 +270,53 @@ TEST(Messages, ValidatorsRefuseAbsurdTimesModesAndIds) {
   m.num_changed = -1;
   EXPECT_FALSE(mmh::validate(m, &why));
 }
+
+TEST(Messages, PlanDebugRoundTripAndValidation) {
+  mmh::PlanDebug debug;
+  debug.paths = {{Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 0, 1)}, {Eigen::Vector3d(2, 0, 1)}};
+  Eigen::Matrix<double, Eigen::Dynamic, 4> box(6, 4);
+  box << 1, 0, 0, 1, -1, 0, 0, 0, 0, 1, 0, 1, 0, -1, 0, 0, 0, 0, 1, 1, 0, 0, -1, 0;
+  debug.polytopes = {box, box};
+  debug.control_points = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.5, 0, 0)};
+  debug.pairs = {{1, Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0)}};
+  mmh::plan_debug_t good = mmh::toDebugMsg(debug, 12, mmh::plan_request_t::MODE_EAM, true);
+  good.header = header(50);
+  EXPECT_EQ(good.num_paths, 2);
+  EXPECT_EQ(good.path_points, (std::vector<int32_t>{2, 1}));
+  EXPECT_EQ(good.num_path_coords, 9);
+  EXPECT_EQ(good.num_polytopes, 2);
+  EXPECT_EQ(good.num_face_values, 48);
+  EXPECT_EQ(good.num_control_coords, 6);
+  EXPECT_EQ(good.num_pairs, 1);
+  EXPECT_EQ(good.pair_control_point, std::vector<int32_t>{1});
+  std::string why;
+  EXPECT_TRUE(mmh::validate(good, &why)) << why;
+  const mmh::plan_debug_t back = roundTrip(good);
+  EXPECT_TRUE(mmh::validate(back, &why)) << why;
+  EXPECT_EQ(back.faces, good.faces);
+  EXPECT_EQ(back.request_id, 12);
+
+  mmh::plan_debug_t bad = good;
+  bad.path_points[0] = 3;  // more points than coordinates
+  EXPECT_FALSE(mmh::validate(bad, &why));
+  bad = good;
+  bad.polytope_faces[1] = 5;
+  EXPECT_FALSE(mmh::validate(bad, &why));
+  bad = good;
+  bad.pair_control_point[0] = 2;  // no such control point
+  EXPECT_FALSE(mmh::validate(bad, &why));
+  bad = good;
+  bad.faces[2] = std::nanf("");
+  EXPECT_FALSE(mmh::validate(bad, &why));
+  bad = good;
+  bad.num_pairs = 2;
+  EXPECT_FALSE(mmh::validate(bad, &why));
+  bad = good;
+  bad.pair_v.pop_back();
+  bad.pair_v.pop_back();
+  bad.pair_v.pop_back();
+  EXPECT_FALSE(mmh::validate(bad, &why));
+  bad = good;
+  bad.mode = 9;
+  EXPECT_FALSE(mmh::validate(bad, &why));
+}

@@ -15,7 +15,7 @@ TEST(FoxgloveProtocol, ServerInfoAndAdvertise) {
   EXPECT_EQ(info["sessionId"], "7");
   const json ad = json::parse(advertise(viewerChannels()));
   EXPECT_EQ(ad["op"], "advertise");
-  ASSERT_EQ(ad["channels"].size(), 10u);
+  ASSERT_EQ(ad["channels"].size(), 11u);
   const json& first = ad["channels"][0];
   EXPECT_EQ(first["id"], 1);
   EXPECT_EQ(first["topic"], "/mmh/map_voxels");
@@ -41,7 +41,7 @@ TEST(FoxgloveProtocol, SubscribeAndUnsubscribe) {
   const ClientRequest unsub = parseClientRequest(R"({"op":"unsubscribe","subscriptionIds":[1]})");
   ASSERT_EQ(unsub.kind, ClientRequest::Kind::kUnsubscribe);
   EXPECT_EQ(unsub.unsubscribed, std::vector<uint32_t>{1});
-  EXPECT_EQ(parseClientRequest(R"({"op":"getParameters","parameterNames":[]})").kind,
+  EXPECT_EQ(parseClientRequest(R"({"op":"advertise","channels":[]})").kind,
             ClientRequest::Kind::kIgnored);
 }
 

@@ -101,15 +101,28 @@ TEST(SceneJson, MessagesMatchTheAdvertisedSchemas) {
   scene.onArbiterStatus(arbiter_status_t{});
   scene.onHeartbeat(heartbeat_t{});
   scene.onMissionStatus(mission_status_t{});
-  const std::vector<ChannelInfo> channels = viewerChannels();
-  ASSERT_EQ(channels.size(), 10u);
+  plan_debug_t debug{};
+  debug.mode = plan_request_t::MODE_SOM;
+  scene.onPlanDebug(debug);
+  EXPECT_EQ(viewerChannels().size(), 11u);  // live: no playback channel
+  const std::vector<ChannelInfo> channels = viewerChannels(true);
+  ASSERT_EQ(channels.size(), 12u);
   for (const ChannelInfo& channel : channels) {
     SCOPED_TRACE(channel.topic);
     EXPECT_EQ(channel.id, static_cast<uint32_t>(&channel - &channels[0] + 1));
-    const SceneMessages messages = scene.snapshot(channel.topic);
+    const SceneMessages messages =
+        channel.topic == topics::kPlayback
+            ? SceneMessages{{channel.topic, 0, playbackJson(PlaybackState{})}}
+            : scene.snapshot(channel.topic);
     ASSERT_FALSE(messages.empty());
     for (const json& key : channel.schema["required"])
       EXPECT_TRUE(messages.front().payload.contains(key.get<std::string>())) << key;
+    // LCM's booleans are int8_t: the JSON must still say true / false where the schema does.
+    for (const auto& [name, property] : channel.schema["properties"].items()) {
+      if (property.value("type", json()) == "boolean") {
+        EXPECT_TRUE(messages.front().payload[name].is_boolean()) << channel.topic << " " << name;
+      }
+    }
     EXPECT_EQ(messages.front().payload.size(), channel.schema["properties"].size());
   }
 }

@@ -1,22 +1,15 @@
 #include "viewer_node.hpp"
 
+#include "scene_channels.hpp"
+
 namespace mmh::viewer {
 
 ViewerNode::ViewerNode(ServiceContext& ctx, SceneState& scene, ViewerServer& server)
     : ctx_(ctx), scene_(scene), server_(server) {
-  namespace ch = channels;
-  ctx.subscribe(ch::kLocalMap, &ViewerNode::on<local_map_t, &SceneState::onLocalMap>, this);
-  ctx.subscribe(ch::kOdometry, &ViewerNode::on<odometry_t, &SceneState::onOdometry>, this);
-  ctx.subscribe(ch::kTrajectory, &ViewerNode::on<trajectory_t, &SceneState::onTrajectory>, this);
-  ctx.subscribe(ch::kAwareness, &ViewerNode::on<awareness_t, &SceneState::onAwareness>, this);
-  for (const char* request : {ch::kPlanRequestFpm, ch::kPlanRequestSom, ch::kPlanRequestEam})
-    ctx.subscribe(request, &ViewerNode::on<plan_request_t, &SceneState::onPlanRequest>, this);
-  ctx.subscribe(ch::kPlanResult, &ViewerNode::on<plan_result_t, &SceneState::onPlanResult>, this);
-  ctx.subscribe(ch::kArbiterStatus, &ViewerNode::on<arbiter_status_t, &SceneState::onArbiterStatus>,
-                this);
-  ctx.subscribe(ch::kHeartbeat, &ViewerNode::on<heartbeat_t, &SceneState::onHeartbeat>, this);
-  ctx.subscribe(ch::kMissionStatus, &ViewerNode::on<mission_status_t, &SceneState::onMissionStatus>,
-                this);
+  forEachSceneChannel([this](const char* channel, auto type) {
+    using Msg = typename decltype(type)::type;
+    ctx_.subscribe(channel, &ViewerNode::on<Msg>, this);
+  });
 }
 
 void ViewerNode::send(const SceneMessages& messages) {

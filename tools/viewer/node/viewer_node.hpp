@@ -18,9 +18,9 @@ class ViewerNode {
 
  private:
   void send(const SceneMessages& messages);
-  template <class Msg, SceneMessages (SceneState::*Apply)(const Msg&)>
+  template <class Msg>
   void on(const Msg& msg) {
-    send((scene_.*Apply)(msg));
+    send(scene_.apply(msg));
   }
 
   ServiceContext& ctx_;

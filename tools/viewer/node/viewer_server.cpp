@@ -101,8 +101,17 @@ class ViewerServer::Impl {
     for (const connection_hdl& hdl : too_slow) closeSlow(hdl);
   }
 
+  void resendSnapshots(const std::string& except_topic) {
+    for (auto& [hdl, client] : clients_) {
+      for (const auto& [subscription, channel] : client.subscriptions) {
+        if (topic_of_channel_[channel] != except_topic) sendSnapshot(hdl, subscription, channel);
+      }
+    }
+  }
+
   size_t numClients() const { return clients_.size(); }
   ServerCounters counters;
+  ParameterHandler parameter_handler;
 
  private:
   struct Client {
@@ -126,7 +135,9 @@ class ViewerServer::Impl {
     clients_[hdl] = Client{};
     ++counters.connections;
     const std::string session = std::to_string(counters.connections);
-    sendText(hdl, foxglove::serverInfo("mmh-viewer", session));
+    std::vector<std::string> capabilities;
+    if (parameter_handler) capabilities.push_back("parameters");
+    sendText(hdl, foxglove::serverInfo("mmh-viewer", session, capabilities));
     sendText(hdl, foxglove::advertise(channels_));
   }
 
@@ -143,8 +154,20 @@ class ViewerServer::Impl {
             continue;
           }
           it->second.subscriptions[subscription] = channel;
-          for (const SceneMessage& m : snapshot_(topic_of_channel_[channel]))
-            send(hdl, subscription, m.utime, m.payload.dump());
+          sendSnapshot(hdl, subscription, channel);
+        }
+        break;
+      case foxglove::ClientRequest::Kind::kSetParameters:
+      case foxglove::ClientRequest::Kind::kGetParameters:
+        if (!parameter_handler) {
+          sendText(hdl, foxglove::status(foxglove::StatusLevel::kWarning, "no parameters here"));
+          break;
+        }
+        {
+          const nlohmann::json values = parameter_handler(request.parameters);
+          // The protocol answers a get, and a set that carries an id.
+          if (!request.id.empty() || request.kind == foxglove::ClientRequest::Kind::kGetParameters)
+            sendText(hdl, foxglove::parameterValues(values, request.id));
         }
         break;
       case foxglove::ClientRequest::Kind::kUnsubscribe:
@@ -159,6 +182,11 @@ class ViewerServer::Impl {
       case foxglove::ClientRequest::Kind::kIgnored:
         break;
     }
+  }
+
+  void sendSnapshot(connection_hdl hdl, uint32_t subscription, uint32_t channel) {
+    for (const SceneMessage& m : snapshot_(topic_of_channel_[channel]))
+      send(hdl, subscription, m.utime, m.payload.dump());
   }
 
   void onHttp(connection_hdl hdl) {
@@ -239,8 +267,14 @@ void ViewerServer::poll() {
 void ViewerServer::stop() {
   impl_->stop();
 }
+void ViewerServer::setParameterHandler(ParameterHandler handler) {
+  impl_->parameter_handler = std::move(handler);
+}
 void ViewerServer::publish(const SceneMessage& message) {
   impl_->publish(message);
+}
+void ViewerServer::resendSnapshots(const std::string& except_topic) {
+  impl_->resendSnapshots(except_topic);
 }
 size_t ViewerServer::numClients() const {
   return impl_->numClients();

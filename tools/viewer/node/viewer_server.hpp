@@ -27,6 +27,9 @@ struct ServerCounters {
 class ViewerServer {
  public:
   using SnapshotSource = std::function<SceneMessages(const std::string& topic)>;
+  // Takes the parameters a client sets (a JSON array of {name, value}; empty for getParameters)
+  // and returns every parameter's current value in the same form.
+  using ParameterHandler = std::function<nlohmann::json(const nlohmann::json& parameters)>;
 
   ViewerServer(std::vector<ChannelInfo> channels, std::string web_root, SnapshotSource snapshot);
   ~ViewerServer();
@@ -39,8 +42,15 @@ class ViewerServer {
   void poll();
   void stop();
 
+  // With a handler the server offers the "parameters" capability (mmh-viewer --log); set before
+  // listen().
+  void setParameterHandler(ParameterHandler handler);
+
   // Sends the message to every client subscribed to its topic.
   void publish(const SceneMessage& message);
+  // Sends every client the snapshot of each channel it subscribes to but except_topic (after the
+  // scene jumped).
+  void resendSnapshots(const std::string& except_topic = "");
   size_t numClients() const;
   const ServerCounters& counters() const;
 

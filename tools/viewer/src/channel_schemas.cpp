@@ -43,7 +43,7 @@ json byMode(const json& value) {
 }
 }  // namespace
 
-std::vector<ChannelInfo> viewerChannels() {
+std::vector<ChannelInfo> viewerChannels(bool with_playback) {
   std::vector<ChannelInfo> out = {
       {0, topics::kMapVoxels, "mmh.viewer.MapVoxels",
        object("occupied voxels added and removed (global voxel indices, flattened x, y, z; a "
@@ -151,7 +151,35 @@ std::vector<ChannelInfo> viewerChannels() {
                                                                 {"position", vec3()},
                                                                 {"goal", vec3()},
                                                                 {"min_clearance_m", number()}})},
+      {0, topics::kPlanDebug, "mmh.viewer.PlanDebug",
+       object("what SOM or EAM computed for one answer (PLAN_DEBUG; flattened x, y, z): A* paths "
+              "(SOM's path, EAM's guides), SOM's corridor polytopes as vertices, EAM's control "
+              "points and {p, v} pairs (pair i: control point pair_control_point[i], plane "
+              "through p with normal v)",
+              {{"t", number()},
+               {"request_id", integer()},
+               {"mode", integer()},
+               {"mode_name", text()},
+               {"ok", boolean()},
+               {"paths", arrayOf(arrayOf(number()))},
+               {"polytopes", arrayOf(arrayOf(number()))},
+               {"control_points", arrayOf(number())},
+               {"pair_control_point", arrayOf(integer())},
+               {"pair_p", arrayOf(number())},
+               {"pair_v", arrayOf(number())}})},
   };
+  if (with_playback) {
+    out.push_back({0, topics::kPlayback, "mmh.viewer.Playback",
+                   object("mmh-viewer --log: the time shown of the recorded flight (set with the "
+                          "parameters playback.time, playback.playing, playback.speed)",
+                          {{"t", number()},
+                           {"start_t", number()},
+                           {"end_t", number()},
+                           {"playing", boolean()},
+                           {"speed", number()},
+                           {"generation", integer()},
+                           {"ready", boolean()}})});
+  }
   for (size_t i = 0; i < out.size(); ++i) out[i].id = static_cast<uint32_t>(i + 1);
   return out;
 }

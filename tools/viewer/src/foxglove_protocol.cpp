@@ -18,13 +18,11 @@ uint32_t idOf(const json& value) {
 }
 }  // namespace
 
-std::string serverInfo(const std::string& server_name, const std::string& session_id) {
-  return json{{"op", "serverInfo"},
-              {"name", server_name},
-              {"capabilities", json::array()},
-              {"supportedEncodings", json::array({"json"})},
-              {"metadata", json::object()},
-              {"sessionId", session_id}}
+std::string serverInfo(const std::string& server_name, const std::string& session_id,
+                       const std::vector<std::string>& capabilities) {
+  return json{{"op", "serverInfo"},           {"name", server_name},
+              {"capabilities", capabilities}, {"supportedEncodings", json::array({"json"})},
+              {"metadata", json::object()},   {"sessionId", session_id}}
       .dump();
 }
 
@@ -55,6 +53,12 @@ std::string messageData(uint32_t subscription_id, uint64_t timestamp_ns,
   return frame;
 }
 
+std::string parameterValues(const json& parameters, const std::string& id) {
+  json out = {{"op", "parameterValues"}, {"parameters", parameters}};
+  if (!id.empty()) out["id"] = id;
+  return out.dump();
+}
+
 ClientRequest parseClientRequest(const std::string& text) {
   ClientRequest request;
   try {
@@ -67,6 +71,17 @@ ClientRequest parseClientRequest(const std::string& text) {
     } else if (op == "unsubscribe") {
       request.kind = ClientRequest::Kind::kUnsubscribe;
       for (const json& id : j.at("subscriptionIds")) request.unsubscribed.push_back(idOf(id));
+    } else if (op == "setParameters" || op == "getParameters") {
+      request.kind = op == "setParameters" ? ClientRequest::Kind::kSetParameters
+                                           : ClientRequest::Kind::kGetParameters;
+      if (j.contains("id")) request.id = j.at("id").get<std::string>();
+      if (request.kind == ClientRequest::Kind::kSetParameters) {
+        for (const json& p : j.at("parameters")) {
+          p.at("name").get<std::string>();  // throws unless a name is given
+          request.parameters.push_back(
+              {{"name", p.at("name")}, {"value", p.value("value", json())}});
+        }
+      }
     }
   } catch (const std::exception& e) {
     request = ClientRequest{};

@@ -5,6 +5,7 @@
 
 #include "mmh/common/decision_names.hpp"
 #include "mmh/common/msg_convert.hpp"
+#include "mmh/viewer/polytope_vertices.hpp"
 
 namespace mmh::viewer {
 namespace {
@@ -28,6 +29,13 @@ const char* awarenessReasonName(int reason) {
     default:
       return "?";
   }
+}
+
+// values[begin, end) rounded to `step`.
+json roundedJson(const std::vector<float>& values, size_t begin, size_t end, double step = 1e-3) {
+  json out = json::array();
+  for (size_t i = begin; i < end && i < values.size(); ++i) out.push_back(roundTo(values[i], step));
+  return out;
 }
 
 }  // namespace
@@ -75,7 +83,7 @@ json trajectoryJson(const trajectory_t& msg, double sample_s) {
 
 json awarenessJson(const awareness_t& msg) {
   json out = {
-      {"t", seconds(msg.header.utime)}, {"safe", msg.safe},
+      {"t", seconds(msg.header.utime)}, {"safe", msg.safe != 0},
       {"reason", msg.reason},           {"reason_name", awarenessReasonName(msg.reason)},
       {"goal_id", msg.goal_id},         {"position", vec3Json(msg.position)},
       {"goal", vec3Json(msg.goal)},     {"ray_end", vec3Json(msg.ray_end)},
@@ -105,7 +113,7 @@ json planResultJson(const plan_result_t& msg) {
           {"reason", msg.reason},
           {"detail", msg.detail},
           {"compute_ms", roundTo(msg.compute_us * 1e-3, 1e-3)},
-          {"narrow", msg.narrow},
+          {"narrow", msg.narrow != 0},
           {"cost_total", msg.cost_total}};
 }
 
@@ -114,7 +122,7 @@ json decisionJson(const arbiter_status_t& msg) {
           {"seq", msg.decision_seq},
           {"trigger", triggerName(msg.trigger)},
           {"outcome", outcomeName(msg.outcome)},
-          {"awareness_safe", msg.awareness_safe},
+          {"awareness_safe", msg.awareness_safe != 0},
           {"awareness_reason", awarenessReasonName(msg.awareness_reason)},
           {"modes_asked", modesMaskName(msg.modes_asked)},
           {"modes_answered_ok", modesMaskName(msg.modes_answered_ok)},
@@ -151,9 +159,9 @@ json heartbeatJson(const heartbeat_t& msg) {
 
 json missionJson(const mission_status_t& msg) {
   return {{"t", seconds(msg.header.utime)},
-          {"active", msg.active},
-          {"reached", msg.reached},
-          {"collided", msg.collided},
+          {"active", msg.active != 0},
+          {"reached", msg.reached != 0},
+          {"collided", msg.collided != 0},
           {"flight_time_s", roundTo(msg.flight_time_s, 1e-3)},
           {"distance_m", roundTo(msg.distance_m, 1e-3)},
           {"energy", roundTo(msg.energy, 1e-3)},
@@ -182,6 +190,48 @@ json pathJson(const std::vector<PathSample>& samples, bool snapshot) {
           {"points", std::move(xyz)},
           {"speed", std::move(speed)},
           {"acceleration", std::move(acc)}};
+}
+
+json planDebugJson(const plan_debug_t& msg) {
+  json paths = json::array();
+  size_t at = 0;
+  for (int32_t n : msg.path_points) {
+    const size_t end = at + 3 * static_cast<size_t>(n);
+    paths.push_back(roundedJson(msg.path_xyz, at, end));
+    at = end;
+  }
+  json polytopes = json::array();
+  at = 0;
+  for (int32_t n : msg.polytope_faces) {
+    std::vector<Eigen::Vector4d> faces;
+    for (int32_t f = 0; f < n && at + 4 <= msg.faces.size(); ++f, at += 4)
+      faces.emplace_back(msg.faces[at], msg.faces[at + 1], msg.faces[at + 2], msg.faces[at + 3]);
+    json vertices = json::array();
+    for (const Eigen::Vector3d& v : polytopeVertices(faces))
+      for (int k = 0; k < 3; ++k) vertices.push_back(roundTo(v[k], 1e-3));
+    polytopes.push_back(std::move(vertices));
+  }
+  return {{"t", seconds(msg.header.utime)},
+          {"request_id", msg.request_id},
+          {"mode", msg.mode},
+          {"mode_name", modeName(msg.mode)},
+          {"ok", msg.ok != 0},
+          {"paths", std::move(paths)},
+          {"polytopes", std::move(polytopes)},
+          {"control_points", roundedJson(msg.control_xyz, 0, msg.control_xyz.size())},
+          {"pair_control_point", msg.pair_control_point},
+          {"pair_p", roundedJson(msg.pair_p, 0, msg.pair_p.size())},
+          {"pair_v", roundedJson(msg.pair_v, 0, msg.pair_v.size(), 1e-4)}};
+}
+
+json playbackJson(const PlaybackState& state) {
+  return {{"t", seconds(state.now_utime)},
+          {"start_t", seconds(state.start_utime)},
+          {"end_t", seconds(state.end_utime)},
+          {"playing", state.playing},
+          {"speed", state.speed},
+          {"generation", state.generation},
+          {"ready", state.ready}};
 }
 
 }  // namespace mmh::viewer

@@ -82,9 +82,20 @@ SceneMessages SceneState::onMissionStatus(const mission_status_t& msg) {
   return latest_mission_;
 }
 
+SceneMessages SceneState::onPlanDebug(const plan_debug_t& msg) {
+  SceneMessage m{topics::kPlanDebug, msg.header.utime, planDebugJson(msg)};
+  latest_debug_by_mode_[msg.mode] = m;
+  return {m};
+}
+
 SceneMessages SceneState::snapshot(const std::string& topic) const {
   const auto fromHistory = [](const std::deque<SceneMessage>& h) {
     return SceneMessages(h.begin(), h.end());
+  };
+  const auto latestOf = [](const auto& latest_by_key) {
+    SceneMessages out;
+    for (const auto& entry : latest_by_key) out.push_back(entry.second);
+    return out;
   };
   if (topic == topics::kMapVoxels) {
     if (voxels_.numOccupied() == 0) return {};
@@ -101,18 +112,11 @@ SceneMessages SceneState::snapshot(const std::string& topic) const {
   if (topic == topics::kOdometry) return latest_odometry_;
   if (topic == topics::kTrajectory) return fromHistory(trajectories_);
   if (topic == topics::kAwareness) return latest_awareness_;
-  if (topic == topics::kPlanRequest) {
-    SceneMessages out;
-    for (const auto& [mode, m] : latest_request_by_mode_) out.push_back(m);
-    return out;
-  }
+  if (topic == topics::kPlanRequest) return latestOf(latest_request_by_mode_);
   if (topic == topics::kPlanResult) return fromHistory(plan_results_);
+  if (topic == topics::kPlanDebug) return latestOf(latest_debug_by_mode_);
   if (topic == topics::kDecision) return fromHistory(decisions_);
-  if (topic == topics::kHeartbeat) {
-    SceneMessages out;
-    for (const auto& [process, m] : latest_heartbeat_by_process_) out.push_back(m);
-    return out;
-  }
+  if (topic == topics::kHeartbeat) return latestOf(latest_heartbeat_by_process_);
   if (topic == topics::kMission) return latest_mission_;
   return {};
 }

@@ -48,6 +48,7 @@ inline constexpr const char* kArbiterStatus = "ARBITER_STATUS";
 inline constexpr const char* kHeartbeat = "HEARTBEAT";
 inline constexpr const char* kMissionStatus = "MISSION_STATUS";
 inline constexpr const char* kSetpoint = "SETPOINT";
+inline constexpr const char* kPlanDebug = "PLAN_DEBUG";  // som/eam.publish_debug only
 }  // namespace channels
 
 // Time of the newest message seen (microseconds of the message clock). Services never read the

@@ -11,6 +11,7 @@
 #include "mmh/local_map_t.hpp"
 #include "mmh/mission_status_t.hpp"
 #include "mmh/odometry_t.hpp"
+#include "mmh/plan_debug_t.hpp"
 #include "mmh/plan_request_t.hpp"
 #include "mmh/plan_result_t.hpp"
 #include "mmh/pointcloud_t.hpp"
@@ -24,6 +25,7 @@ constexpr int32_t kMaxTrajectoryPieces = 4096;
 constexpr int32_t kMaxPointcloudCoords = 3 * 4'000'000;
 constexpr int32_t kMaxWaypoints = 1024;
 constexpr int32_t kMaxHeartbeatCounters = 256;
+constexpr int32_t kMaxDebugValues = 1'000'000;  // plan_debug_t: values per array
 constexpr double kMaxAbsCoordinate_m = 1e6;
 constexpr size_t kMaxTextLength = 4096;  // free-text fields (detail, state_detail)
 // No trajectory of this system lasts an hour; checking a longer one would take the arbiter minutes.
@@ -45,5 +47,6 @@ bool validate(const arbiter_status_t& msg, std::string* why);
 bool validate(const heartbeat_t& msg, std::string* why);
 bool validate(const mission_status_t& msg, std::string* why);
 bool validate(const setpoint_t& msg, std::string* why);
+bool validate(const plan_debug_t& msg, std::string* why);
 
 }  // namespace mmh

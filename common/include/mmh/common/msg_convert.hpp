@@ -6,8 +6,10 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "mmh/common/plan_debug.hpp"
 #include "mmh/common/trajectory.hpp"
 #include "mmh/odometry_t.hpp"
+#include "mmh/plan_debug_t.hpp"
 #include "mmh/plan_request_t.hpp"
 #include "mmh/trajectory_t.hpp"
 
@@ -32,5 +34,8 @@ std::vector<Eigen::Vector3d> getWaypoints(const plan_request_t& msg);
 KinematicState startStateOf(const plan_request_t& msg);
 void setStartState(const KinematicState& state, plan_request_t& msg);
 KinematicState stateOf(const odometry_t& msg);
+
+// The PLAN_DEBUG message of one answer (the header is the publisher's).
+plan_debug_t toDebugMsg(const PlanDebug& debug, int64_t request_id, int8_t mode, bool ok);
 
 }  // namespace mmh

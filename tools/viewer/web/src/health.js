@@ -1,12 +1,23 @@
 // The health panel: one row per service process from HEARTBEAT. A process is alive while its
-// heartbeats keep coming (within 3 s of this page's clock), silent after.
+// heartbeats keep coming (within 3 s of this page's clock), silent after. For a recorded flight
+// (useMessageClock) the clock is the time shown: alive if a heartbeat came in the 3 s before it.
 const SILENT_AFTER_MS = 3000;
 
 export class HealthPanel {
   constructor(tbody) {
     this.tbody = tbody;
     this.rows = new Map();
+    this.messageClock = null; // () => seconds of the message clock, or null: this page's clock
     setInterval(() => this.refreshAges(), 500);
+  }
+
+  useMessageClock(now) {
+    this.messageClock = now;
+  }
+
+  reset() {
+    this.rows.clear();
+    this.tbody.innerHTML = "";
   }
 
   onHeartbeat(hb) {
@@ -40,7 +51,9 @@ export class HealthPanel {
   refreshAges() {
     const now = performance.now();
     for (const row of this.rows.values()) {
-      const alive = now - row.receivedMs < SILENT_AFTER_MS;
+      const alive = this.messageClock
+        ? this.messageClock() - row.heartbeat.t < SILENT_AFTER_MS / 1000
+        : now - row.receivedMs < SILENT_AFTER_MS;
       row.tr.dataset.alive = alive ? "true" : "false";
       row.tr.classList.toggle("silent", !alive);
       row.tr.classList.toggle("degraded", alive && row.heartbeat.state !== "OK");

@@ -1,9 +1,11 @@
 // The 3D view: occupied voxels, the vehicle with its camera frustum, the flown path coloured by
-// speed, committed trajectories coloured by mode, the local target, the goal and the sensing ray.
+// speed, committed trajectories coloured by mode, the local target, the goal, the sensing ray and
+// the planners' debug layer. reset() empties it (a jump of mmh-viewer --log's time slider).
 // Orbit camera (drag, wheel) or follow-the-vehicle mode. World frame, z up, metres.
 import * as THREE from "three";
 import { OrbitControls } from "three/addons/controls/OrbitControls.js";
 import { AWARENESS_COLORS, modeColor, speedColor } from "./colors.js";
+import { DebugLayer } from "./debug_layer.js";
 import { VoxelLayer } from "./voxel_layer.js";
 
 const MAX_PATH_POINTS = 20000;
@@ -52,6 +54,7 @@ export class Scene3D {
     this.ray.visible = false;
     this.blocked = marker(0.12, AWARENESS_COLORS.blocked);
     this.scene.add(this.ray, this.blocked);
+    this.debug = new DebugLayer(this.scene);
 
     new ResizeObserver(() => this.resize()).observe(container);
     this.resize();
@@ -116,6 +119,7 @@ export class Scene3D {
     geometry.setAttribute("position", new THREE.Float32BufferAttribute(trajectory.points, 3));
     const line = new THREE.Line(geometry, new THREE.LineBasicMaterial({ color: modeColor(trajectory.mode_name) }));
     line.userData = trajectory;
+    line.visible = !this.hidden?.has("trajectories");
     this.scene.add(line);
     this.trajectories.push(line);
     while (this.trajectories.length > KEPT_TRAJECTORIES) {
@@ -129,8 +133,9 @@ export class Scene3D {
   onAwareness(awareness) {
     this.ray.geometry.setFromPoints([new THREE.Vector3(...awareness.position), new THREE.Vector3(...awareness.ray_end)]);
     this.ray.material.color.set(AWARENESS_COLORS[awareness.reason_name] ?? "#000000");
-    this.ray.visible = true;
-    this.blocked.visible = awareness.first_blocked !== null;
+    const shown = !this.hidden?.has("ray");
+    this.ray.visible = shown;
+    this.blocked.visible = shown && awareness.first_blocked !== null;
     if (awareness.first_blocked) this.blocked.position.set(...awareness.first_blocked);
     this.goal.position.set(...awareness.goal);
     this.goal.visible = true;
@@ -162,12 +167,35 @@ export class Scene3D {
     this.target.visible = true;
   }
 
+  onPlanDebug(debug) {
+    this.debug.onPlanDebug(debug);
+  }
+
+  // Back to an empty scene (the camera stays where it is).
+  reset() {
+    this.voxels.apply({ snapshot: true, resolution: this.voxels.resolution, added: [], removed: [] });
+    this.path.count = 0;
+    this.path.line.geometry.setDrawRange(0, 0);
+    for (const old of this.trajectories) {
+      this.scene.remove(old);
+      old.geometry.dispose();
+    }
+    this.trajectories = [];
+    for (const o of [this.vehicle, this.target, this.goal, this.ray, this.blocked]) o.visible = false;
+    this.debug.reset();
+    this.counts = { voxels: 0, pathPoints: 0, trajectories: 0 };
+  }
+
   setLayerVisible(layer, visible) {
+    this.hidden = this.hidden ?? new Set();
+    if (visible) this.hidden.delete(layer);
+    else this.hidden.add(layer);
     const objects = {
       voxels: [this.voxels.mesh],
       path: [this.path.line],
       trajectories: this.trajectories,
       ray: [this.ray, this.blocked],
+      debug: [this.debug.group],
     }[layer];
     for (const o of objects ?? []) o.visible = visible;
   }

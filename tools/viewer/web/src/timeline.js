@@ -9,6 +9,21 @@ export class Timeline {
     this.decisions = [];
     this.results = new Map(); // request id -> answers of the modes
     this.selected = null;
+    this.span = null; // [t0, t1] of a recorded flight; null: the decisions' own span
+  }
+
+  // A recorded flight: marks along its whole time, as the slider above.
+  setSpan(t0, t1) {
+    this.span = [t0, t1];
+    this.layout();
+  }
+
+  reset() {
+    for (const d of this.decisions) d.mark.remove();
+    this.decisions = [];
+    this.results.clear();
+    this.selected = null;
+    this.details.innerHTML = '<p class="hint">Click a mark on the timeline for the decision.</p>';
   }
 
   onPlanResult(result) {
@@ -33,8 +48,8 @@ export class Timeline {
 
   layout() {
     if (this.decisions.length === 0) return;
-    const t0 = this.decisions[0].t;
-    const span = Math.max(1, this.decisions[this.decisions.length - 1].t - t0);
+    const [t0, t1] = this.span ?? [this.decisions[0].t, this.decisions[this.decisions.length - 1].t];
+    const span = Math.max(1, t1 - t0);
     for (const d of this.decisions) d.mark.style.left = `calc(${(100 * (d.t - t0)) / span}% - 4px)`;
   }
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "mmh/common/plan_debug.hpp"
 #include "mmh/common/plan_status.hpp"
 #include "mmh/common/trajectory.hpp"
 #include "mmh/common/voxel_grid.hpp"
@@ -98,6 +99,10 @@ class Planner {
   GuideSearch guides_;
   std::function<void(const std::string&)> trace_;
 };
+
+// The A* guides, the B-spline's control points and the {p, v} pairs of `result`, for the ground
+// station (eam.publish_debug).
+PlanDebug debugOf(const PlanResult& result);
 
 // Exact maxima of speed and acceleration of a uniform cubic B-spline (acceleration is piecewise
 // linear, so its maximum is at a knot; speed squared is a quartic per interval).

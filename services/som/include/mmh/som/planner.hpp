@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "mmh/common/grid_astar.hpp"
+#include "mmh/common/plan_debug.hpp"
 #include "mmh/common/plan_status.hpp"
 #include "mmh/common/trajectory.hpp"
 #include "mmh/common/voxel_grid.hpp"
@@ -63,6 +64,9 @@ class Planner {
   CorridorBuilder corridor_builder_;
   TrajectoryOptimizer optimizer_;
 };
+
+// The shortened A* path and the corridor of `out`, for the ground station (som.publish_debug).
+PlanDebug debugOf(const PlanOutput& out);
 
 // Lower bound on the duration of a rest-to-rest flight along a path of this length under the
 // limits (docs/benchmark.md): L / v + v / a, or 2 sqrt(L / a) when v_max is not reached.

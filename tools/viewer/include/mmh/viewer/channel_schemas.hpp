@@ -16,7 +16,8 @@ struct ChannelInfo {
   nlohmann::json schema;
 };
 
-// Every channel, ids from 1 in the order of scene_topics.hpp.
-std::vector<ChannelInfo> viewerChannels();
+// Every channel, ids from 1 in the order of scene_topics.hpp; /mmh/playback only with_playback
+// (mmh-viewer --log).
+std::vector<ChannelInfo> viewerChannels(bool with_playback = false);
 
 }  // namespace mmh::viewer

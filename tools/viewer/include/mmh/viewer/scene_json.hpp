@@ -10,6 +10,7 @@
 #include "mmh/heartbeat_t.hpp"
 #include "mmh/mission_status_t.hpp"
 #include "mmh/odometry_t.hpp"
+#include "mmh/plan_debug_t.hpp"
 #include "mmh/plan_request_t.hpp"
 #include "mmh/plan_result_t.hpp"
 #include "mmh/trajectory_t.hpp"
@@ -33,5 +34,19 @@ nlohmann::json missionJson(const mission_status_t& msg);
 // snapshot: the changes are the whole layer (a client that connected late), not a delta.
 nlohmann::json voxelsJson(const VoxelChanges& changes, double resolution_m, bool snapshot);
 nlohmann::json pathJson(const std::vector<PathSample>& samples, bool snapshot);
+// PLAN_DEBUG with each corridor polytope as its vertices (flattened x, y, z), ready to draw.
+nlohmann::json planDebugJson(const plan_debug_t& msg);
+
+// Where `mmh-viewer --log` is in the recorded flight. generation counts the jumps (seeks): a
+// client that sees it change drops its scene, and the snapshots of the new time follow, then
+// the same state with ready (false only on the first message of a jump).
+struct PlaybackState {
+  int64_t start_utime = 0, end_utime = 0, now_utime = 0;
+  bool playing = false;
+  double speed = 1.0;
+  int64_t generation = 0;
+  bool ready = true;
+};
+nlohmann::json playbackJson(const PlaybackState& state);
 
 }  // namespace mmh::viewer

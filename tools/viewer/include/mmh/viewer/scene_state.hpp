@@ -17,6 +17,7 @@
 #include "mmh/local_map_t.hpp"
 #include "mmh/mission_status_t.hpp"
 #include "mmh/odometry_t.hpp"
+#include "mmh/plan_debug_t.hpp"
 #include "mmh/plan_request_t.hpp"
 #include "mmh/plan_result_t.hpp"
 #include "mmh/trajectory_t.hpp"
@@ -56,6 +57,18 @@ class SceneState {
   SceneMessages onArbiterStatus(const arbiter_status_t& msg);
   SceneMessages onHeartbeat(const heartbeat_t& msg);
   SceneMessages onMissionStatus(const mission_status_t& msg);
+  SceneMessages onPlanDebug(const plan_debug_t& msg);
+  // The on*() of the message's type, for callers generic in the type.
+  SceneMessages apply(const local_map_t& msg) { return onLocalMap(msg); }
+  SceneMessages apply(const odometry_t& msg) { return onOdometry(msg); }
+  SceneMessages apply(const trajectory_t& msg) { return onTrajectory(msg); }
+  SceneMessages apply(const awareness_t& msg) { return onAwareness(msg); }
+  SceneMessages apply(const plan_request_t& msg) { return onPlanRequest(msg); }
+  SceneMessages apply(const plan_result_t& msg) { return onPlanResult(msg); }
+  SceneMessages apply(const arbiter_status_t& msg) { return onArbiterStatus(msg); }
+  SceneMessages apply(const heartbeat_t& msg) { return onHeartbeat(msg); }
+  SceneMessages apply(const mission_status_t& msg) { return onMissionStatus(msg); }
+  SceneMessages apply(const plan_debug_t& msg) { return onPlanDebug(msg); }
 
   // Everything a client subscribing to `topic` now needs, oldest first (empty if nothing yet).
   SceneMessages snapshot(const std::string& topic) const;
@@ -74,7 +87,7 @@ class SceneState {
   int64_t last_map_utime_ = 0;
   int64_t last_odometry_forwarded_ = 0;
   SceneMessages latest_odometry_, latest_awareness_, latest_mission_;
-  std::map<int, SceneMessage> latest_request_by_mode_;
+  std::map<int, SceneMessage> latest_request_by_mode_, latest_debug_by_mode_;
   std::map<std::string, SceneMessage> latest_heartbeat_by_process_;
   std::deque<SceneMessage> trajectories_, decisions_, plan_results_;
 };

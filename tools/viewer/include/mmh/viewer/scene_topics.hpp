@@ -12,4 +12,6 @@ inline constexpr const char* kPlanResult = "/mmh/plan_result";
 inline constexpr const char* kDecision = "/mmh/decision";  // one per ARBITER_STATUS
 inline constexpr const char* kHeartbeat = "/mmh/heartbeat";
 inline constexpr const char* kMission = "/mmh/mission";
+inline constexpr const char* kPlanDebug = "/mmh/plan_debug";  // corridor, A* paths, {p, v} pairs
+inline constexpr const char* kPlayback = "/mmh/playback";     // --log only: the time slider
 }  // namespace mmh::viewer::topics
