@@ -197,6 +197,11 @@ bool validate(const arbiter_status_t& msg, std::string* why) {
   if (!finiteVec(msg.position, 3) || !finiteVec(msg.local_target, 3))
     return fail(why, "non-finite coordinates");
   if (!validText(msg.detail, kMaxTextLength)) return fail(why, "detail is too long or has a NUL");
+  if (!validText(msg.degraded_reason, kMaxTextLength))
+    return fail(why, "degraded_reason is too long or has a NUL");
+  if (!std::isfinite(msg.replan_lead_s) || !std::isfinite(msg.answer_deadline_s) ||
+      msg.replan_lead_s < 0.0 || msg.answer_deadline_s < 0.0)
+    return fail(why, "replan_lead_s or answer_deadline_s is negative or not finite");
   return true;
 }
 

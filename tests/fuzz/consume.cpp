@@ -132,4 +132,8 @@ void consume(const setpoint_t& msg) {
   reencode(msg);
 }
 
+void consume(const plan_debug_t& msg) {
+  reencode(msg);
+}
+
 }  // namespace mmh::fuzz

@@ -11,6 +11,7 @@
 #include "mmh/local_map_t.hpp"
 #include "mmh/mission_status_t.hpp"
 #include "mmh/odometry_t.hpp"
+#include "mmh/plan_debug_t.hpp"
 #include "mmh/plan_request_t.hpp"
 #include "mmh/plan_result_t.hpp"
 #include "mmh/pointcloud_t.hpp"
@@ -31,5 +32,6 @@ void consume(const arbiter_status_t& msg);
 void consume(const heartbeat_t& msg);
 void consume(const mission_status_t& msg);
 void consume(const setpoint_t& msg);
+void consume(const plan_debug_t& msg);
 
 }  // namespace mmh::fuzz

@@ -19,6 +19,7 @@
 #include "mmh/heartbeat_t.hpp"
 #include "mmh/mission_status_t.hpp"
 #include "mmh/odometry_t.hpp"
+#include "mmh/plan_debug_t.hpp"
 #include "mmh/plan_request_t.hpp"
 #include "mmh/plan_result_t.hpp"
 #include "mmh/pointcloud_t.hpp"
@@ -204,7 +205,43 @@ void arbiterStatus() {
   m.modes_asked = 1 << plan_request_t::MODE_SOM;
   m.position[2] = 1.2;
   m.detail = "committed SOM";
+  m.replan_lead_s = 0.05;
+  m.answer_deadline_s = 0.04;
   write(m, "committed");
+  m.replan_lead_s = 0.19;
+  m.answer_deadline_s = 0.18;
+  m.degraded = true;
+  m.degraded_reason = "answers late (p99 120 ms): deadline 180 ms, lead 190 ms";
+  write(m, "degraded");
+}
+
+void planDebug() {
+  plan_debug_t m{};
+  m.header = header(2'000'000, "mmh-som");
+  m.request_id = 7;
+  m.mode = plan_request_t::MODE_SOM;
+  m.ok = true;
+  m.path_points = {2};
+  m.num_paths = 1;
+  m.path_xyz = {0, 0, 1.2f, 2, 0, 1.2f};
+  m.num_path_coords = 6;
+  m.polytope_faces = {1};
+  m.num_polytopes = 1;
+  m.faces = {1, 0, 0, 3};
+  m.num_face_values = 4;
+  write(m, "som");
+  plan_debug_t e{};
+  e.header = header(2'000'000, "mmh-eam");
+  e.request_id = 8;
+  e.mode = plan_request_t::MODE_EAM;
+  e.control_xyz = {0, 0, 1.2f, 1, 0, 1.2f};
+  e.num_control_coords = 6;
+  e.pair_control_point = {1};
+  e.num_pairs = 1;
+  e.pair_p = {1, 0.3f, 1.2f};
+  e.pair_v = {0, 1, 0};
+  e.num_pair_coords = 3;
+  write(e, "eam");
 }
 
 void heartbeat() {
@@ -276,6 +313,7 @@ int main(int argc, char** argv) {
   planRequest();
   planResult();
   arbiterStatus();
+  planDebug();
   heartbeat();
   missionStatus();
   return 0;

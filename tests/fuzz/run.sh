@@ -24,7 +24,7 @@ while [ $# -gt 0 ]; do
 done
 [ ${#targets[@]} -gt 0 ] || targets=(odometry_t pointcloud_t goal_t local_map_t awareness_t
   trajectory_t plan_request_t plan_result_t arbiter_status_t heartbeat_t mission_status_t
-  setpoint_t)
+  setpoint_t plan_debug_t)
 
 if ! command -v clang++ >/dev/null || ! ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a >/dev/null 2>&1; then
   echo "fuzz: clang++ or libFuzzer (libclang-rt-*-dev) missing: skipped"

@@ -118,6 +118,11 @@ TEST(Messages, GoalAwarenessStatusHeartbeatMission) {
   s.iterations_som = 4;
   EXPECT_EQ(roundTrip(s).iterations_som, 4);
   EXPECT_TRUE(mmh::validate(s, &why));
+  s.degraded_reason = std::string("late\0", 5);  // a NUL would not survive re-encoding
+  EXPECT_FALSE(mmh::validate(s, &why));
+  s.degraded_reason = "answers late";
+  s.answer_deadline_s = NAN;
+  EXPECT_FALSE(mmh::validate(s, &why));
 
   mmh::heartbeat_t h{};
   h.header = header(4);
