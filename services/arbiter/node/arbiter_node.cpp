@@ -145,26 +145,22 @@ void ArbiterNode::flush() {
     }
   }
   // The library's fault counters, mirrored into HEARTBEAT.
-  auto mirror = [this](const char* name, int64_t value) {
-    ctx_.increment(name, value - ctx_.counter(name));
-  };
-  mirror("odometry_stale", n.stale_odometry);
-  mirror("not_committed_odometry_stale", n.not_committed_stale_odom);
-  mirror("unanswered_requests", n.unanswered);
-  mirror("stops", n.stops);
-  mirror("failed_decisions", n.failures);  // e.g. an unreachable goal: every mode fails
-  mirror("rejected_answers", n.rejected_answers);
-  mirror("unreachable_goals", n.unreachable_goals);
-  mirror("back_offs", n.back_offs);
-  mirror("degraded_periods", n.degraded_periods);
-  // Latencies as counters (ms), so that mmh-top and a log show what the budget sees.
-  auto gauge = [this](const char* name, double seconds) {
-    ctx_.increment(name, static_cast<int64_t>(seconds * 1e3) - ctx_.counter(name));
-  };
-  gauge("answer_latency_p99_ms", arbiter_.latencies().worstAnswerLatency(0.99));
-  gauge("map_age_p99_ms", arbiter_.latencies().mapAge(0.99));
-  gauge("answer_deadline_ms", arbiter_.latencyBudget().answer_deadline_s);
-  mirror("moved_goals", n.moved_goals);
+  ctx_.setCounter("odometry_stale", n.stale_odometry);
+  ctx_.setCounter("not_committed_odometry_stale", n.not_committed_stale_odom);
+  ctx_.setCounter("unanswered_requests", n.unanswered);
+  ctx_.setCounter("stops", n.stops);
+  ctx_.setCounter("failed_decisions", n.failures);  // e.g. an unreachable goal: every mode fails
+  ctx_.setCounter("rejected_answers", n.rejected_answers);
+  ctx_.setCounter("unreachable_goals", n.unreachable_goals);
+  ctx_.setCounter("back_offs", n.back_offs);
+  ctx_.setCounter("moved_goals", n.moved_goals);
+  ctx_.setCounter("degraded_periods", n.degraded_periods);
+  // Latencies as gauges (ms), so that mmh-top and a log show what the budget sees.
+  auto milliseconds = [](double seconds) { return static_cast<int64_t>(seconds * 1e3); };
+  ctx_.setCounter("answer_latency_p99_ms",
+                  milliseconds(arbiter_.latencies().worstAnswerLatency(0.99)));
+  ctx_.setCounter("map_age_p99_ms", milliseconds(arbiter_.latencies().mapAge(0.99)));
+  ctx_.setCounter("answer_deadline_ms", milliseconds(arbiter_.latencyBudget().answer_deadline_s));
   if (arbiter_.odometryStale(now)) {
     ctx_.setState(heartbeat_t::STATE_DEGRADED, "ODOMETRY is stale: not planning");
   } else if (arbiter_.latencyBudget().degraded && arbiter_.hasGoal() && map_.hasMap()) {

@@ -70,13 +70,10 @@ void SetpointNode::tick(int64_t now) {
 
 void SetpointNode::report() {
   const setpoint::ServerCounters& n = server_.counters();
-  auto mirror = [this](const char* name, int64_t value) {
-    ctx_.increment(name, value - ctx_.counter(name));
-  };
-  mirror("trajectories_received", n.trajectories);
-  mirror("trajectory_switches", n.switches);
-  mirror("trajectory_jumps", n.jumps);
-  mirror("watchdog_trips", n.watchdog_trips);
+  ctx_.setCounter("trajectories_received", n.trajectories);
+  ctx_.setCounter("trajectory_switches", n.switches);
+  ctx_.setCounter("trajectory_jumps", n.jumps);
+  ctx_.setCounter("watchdog_trips", n.watchdog_trips);
   if (server_.watchdogTripped()) {
     if (!was_tripped_) logWarn("mmh-setpoint: " + server_.watchdogReason());
     ctx_.setState(heartbeat_t::STATE_DEGRADED, server_.watchdogReason());

@@ -19,15 +19,12 @@ void ViewerNode::send(const SceneMessages& messages) {
 void ViewerNode::poll() {
   server_.poll();
   const ServerCounters& c = server_.counters();
-  const auto set = [this](const std::string& name, int64_t value) {
-    ctx_.increment(name, value - ctx_.counter(name));
-  };
-  set("viewer_clients", static_cast<int64_t>(server_.numClients()));
-  set("viewer_connections", c.connections);
-  set("viewer_frames_sent", c.frames_sent);
-  set("viewer_slow_clients_closed", c.slow_clients_closed);
-  set("viewer_bad_requests", c.bad_requests);
-  set("viewer_maps_refused", scene_.mapsRefused());
+  ctx_.setCounter("viewer_clients", static_cast<int64_t>(server_.numClients()));
+  ctx_.setCounter("viewer_connections", c.connections);
+  ctx_.setCounter("viewer_frames_sent", c.frames_sent);
+  ctx_.setCounter("viewer_slow_clients_closed", c.slow_clients_closed);
+  ctx_.setCounter("viewer_bad_requests", c.bad_requests);
+  ctx_.setCounter("viewer_maps_refused", scene_.mapsRefused());
 }
 
 }  // namespace mmh::viewer

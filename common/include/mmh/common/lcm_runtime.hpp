@@ -107,6 +107,8 @@ class ServiceContext {
 
   // Counters (reported in HEARTBEAT). reject() also logs the reason, rate-limited per counter.
   void increment(const std::string& counter, int64_t n = 1) { counters_[counter] += n; }
+  // Sets a counter to a library's own count (or a gauge to its value), for HEARTBEAT.
+  void setCounter(const std::string& counter, int64_t value) { counters_[counter] = value; }
   int64_t counter(const std::string& name) const;
   void reject(const std::string& counter, const std::string& reason);
   int64_t messagesIn() const { return msgs_in_; }
