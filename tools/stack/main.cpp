@@ -9,6 +9,7 @@
 #include "mmh/common/cli.hpp"
 #include "mmh/common/log.hpp"
 #include "mmh/common/node_options.hpp"
+#include "mmh/sim/world_file.hpp"
 #include "stack.hpp"
 
 namespace {
@@ -52,7 +53,8 @@ int main(int argc, char** argv) {
   mmh::sim::SimOptions sim;
   std::string policy, log_path, waypoints_text, mission_path;
   double timeout_s = 120.0, map_loss = 0.0;
-  bool json = false;
+  bool json = false, fit_geofence = false;
+  std::string export_path;
   int vehicles = 1;
   int seed = static_cast<int>(sim.seed), noise_seed = static_cast<int>(sim.noise_seed);
   mmh::ArgParser parser("mmh-stack",
@@ -88,6 +90,12 @@ int main(int argc, char** argv) {
                    "key=value: override one configuration key (repeatable; the key must exist)");
   parser.addInt("--vehicles", &vehicles,
                 "vehicles in the one simulation (prefixes <prefix>UAV1_ ..., seeds +0, +1, ...)");
+  parser.addFlag("--fit-geofence", &fit_geofence,
+                 "with --world FILE.pcd: set geofence.min_m / max_m to the file's bounds plus 1 m "
+                 "in x and y (z as configured), and print them");
+  parser.addString("--export-world", &export_path,
+                   "write the generated world (forest, ego-forest) as a PCD file of surface "
+                   "points (0.05 m apart) and exit");
   int code = 0;
   if (!parser.parse(argc, argv, &code)) return code;
   sim.seed = seed;
@@ -96,6 +104,21 @@ int main(int argc, char** argv) {
   try {
     mmh::StackOptions options;
     options.config = mmh::loadConfigWithOverrides(node, overrides);
+    if (!export_path.empty()) {
+      const std::vector<Eigen::Vector3f> points = mmh::sim::generatedWorldPoints(sim);
+      mmh::sim::writePcd(export_path, points);
+      std::cout << "mmh-stack: wrote " << points.size() << " surface points of the " << sim.world
+                << " (seed " << sim.seed << ", density " << sim.density_per_m2 << " /m^2) to "
+                << export_path << std::endl;
+      return 0;
+    }
+    if (fit_geofence) {
+      std::string report;
+      const mmh::Geofence fence = mmh::sim::fitGeofenceToPcd(sim.world, options.config, &report);
+      options.config = mmh::sim::configWithGeofence(options.config, fence);
+      // On stderr: --json keeps stdout to the one result object.
+      std::cerr << "mmh-stack: " << report << std::endl;
+    }
     options.sim = sim;
     options.prefix = node.prefix;
     options.policy = policy;

@@ -47,7 +47,8 @@ SensorKind parseSensorKind(const std::string& name);  // throws std::runtime_err
 class Simulator {
  public:
   // Throws std::runtime_error for bad options (see makeWorld; also a start inside an obstacle, a
-  // start or goal outside the geofence, an unknown --follow).
+  // start or goal outside the geofence or, in a PCD world, outside the points' bounds in x and y,
+  // an unknown --follow).
   Simulator(const SimParams& params, const SimOptions& options);
   Simulator(const SimParams& params, const SimOptions& options, std::unique_ptr<World> world);
 
