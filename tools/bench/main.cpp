@@ -273,6 +273,13 @@ int main(int argc, char** argv) {
     if (WIFSIGNALED(status)) {
       results[i].error = "worker died with signal " + std::to_string(WTERMSIG(status));
     }
+    if (WIFEXITED(status) && WEXITSTATUS(status) != 0 && results[i].error.empty()) {
+      results[i].error = "worker exited with status " + std::to_string(WEXITSTATUS(status));
+    }
+    // Every failure says why: `error` (it could not fly) or `reason` (it flew and failed).
+    if (!results[i].success && results[i].error.empty() && results[i].reason.empty()) {
+      results[i].reason = "failed without a recorded reason";
+    }
     if (!results[i].success) ++failed;
     ++done;
     progress(done, flights.size(), elapsed(), failed);
@@ -289,6 +296,7 @@ int main(int argc, char** argv) {
             << mmh::bench::stopCensusMarkdown(results);
   for (const FlightResult& r : results) {
     if (!r.error.empty()) std::cerr << r.spec.id() << ": " << r.error << "\n";
+    if (!r.success && r.error.empty()) std::cerr << r.spec.id() << ": " << r.reason << "\n";
   }
   if (!no_plots) {
     const std::string cmd = "/usr/bin/python3 " + std::string(MMH_SOURCE_DIR) +

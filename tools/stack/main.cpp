@@ -1,5 +1,6 @@
 // mmh-stack: flies one mission with every service hosted in this process on memq://, the
 // simulator in lock-step (faster than real time; the same seed gives the same flight).
+#include <cstdio>
 #include <iostream>
 #include <sstream>
 
@@ -13,6 +14,24 @@
 #include "stack.hpp"
 
 namespace {
+
+// A JSON string literal of s (quotes, backslashes and control characters escaped).
+std::string jsonString(const std::string& s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof(buf), "\\u%04x", static_cast<unsigned char>(c));
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
 
 // {"cause": count, ...} in the census's (alphabetical) order.
 std::string causeCountsJson(const mmh::FlightCensus& census) {
@@ -142,7 +161,10 @@ int main(int argc, char** argv) {
     for (const auto& c : r.calls) cost_sum += c.compute_ms;
     const int iterations = static_cast<int>(r.calls.size());
     if (json) {
-      std::cout << "{\"result\": \"" << r.end_reason << "\", \"flight_time_s\": " << m.flight_time_s
+      // A failure says why (only then, so a success's JSON stays as it was).
+      const std::string reason = r.success() ? "" : ", \"reason\": " + jsonString(r.failure_reason);
+      std::cout << "{\"result\": \"" << r.end_reason << "\"" << reason
+                << ", \"flight_time_s\": " << m.flight_time_s
                 << ", \"distance_m\": " << m.distance_m << ", \"energy\": " << m.energy
                 << ", \"iterations\": " << iterations << ", \"fpm\": " << r.iterations[1]
                 << ", \"som\": " << r.iterations[2] << ", \"eam\": " << r.iterations[3]
@@ -155,8 +177,9 @@ int main(int argc, char** argv) {
                 << ", \"trajectory_digest\": \"" << std::hex << r.trajectory_digest << std::dec
                 << "\"" << missionJson(m) << "}\n";
     } else {
-      std::cout << "result:        " << r.end_reason << "\n"
-                << "flight time:   " << m.flight_time_s << " s (bound " << m.time_bound_s << " s)\n"
+      std::cout << "result:        " << r.end_reason << "\n";
+      if (!r.success()) std::cout << "reason:        " << r.failure_reason << "\n";
+      std::cout << "flight time:   " << m.flight_time_s << " s (bound " << m.time_bound_s << " s)\n"
                 << "distance:      " << m.distance_m << " m\n"
                 << "energy:        " << m.energy << " m^2/s^5\n"
                 << "iterations:    " << iterations << " (FPM " << r.iterations[1] << ", SOM "
