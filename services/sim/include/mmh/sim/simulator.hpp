@@ -67,6 +67,10 @@ class Simulator {
   void setGoal(const Eigen::Vector3d& goal, int64_t goal_id) { monitor_.setGoal(goal, goal_id); }
   // A goal that is one waypoint of a mission (goal_t's mission fields).
   void setMissionGoal(const MissionGoal& goal) { monitor_.setMissionGoal(goal); }
+  // The arbiter moved the current goal (MissionMonitor::acceptMovedGoal).
+  bool acceptMovedGoal(const Eigen::Vector3d& moved) {
+    return monitor_.acceptMovedGoal(moved, params_.goal_relocate_radius_m);
+  }
   // Following setpoints: the newest SETPOINT.
   void setSetpoint(const SetpointSample& setpoint) { vehicle_.setSetpoint(setpoint); }
   bool followsSetpoints() const { return vehicle_.followsSetpoints(); }
