@@ -5,13 +5,15 @@
 #include <thread>
 
 #include "mmh/common/node_options.hpp"
+#include "mmh/sim/world_file.hpp"
 #include "sim_node.hpp"
 
 int main(int argc, char** argv) {
   mmh::NodeOptions node;
   mmh::SimOptions o;
   int seed = static_cast<int>(o.seed), noise_seed = static_cast<int>(o.noise_seed);
-  bool realtime = false, exit_when_finished = false;
+  bool realtime = false, exit_when_finished = false, fit_geofence = false;
+  std::string export_path;
   double speed = 1.0, duration_s = 0.0;
   mmh::ArgParser parser("mmh-sim",
                         "Simulated UAV: random forest or PCD world, vehicle that follows the "
@@ -42,6 +44,12 @@ int main(int argc, char** argv) {
   parser.addDouble("--duration", &duration_s, "stop after this many simulated seconds (0: never)");
   parser.addFlag("--exit-when-finished", &exit_when_finished,
                  "stop once the goal is reached (or on collision with sim.stop_on_collision)");
+  parser.addFlag("--fit-geofence", &fit_geofence,
+                 "with --world FILE.pcd: set geofence.min_m / max_m to the file's bounds plus 1 m "
+                 "in x and y (z as configured), and print them");
+  parser.addString("--export-world", &export_path,
+                   "write the generated world (forest, ego-forest) as a PCD file of surface "
+                   "points (0.05 m apart) and exit");
   int code = 0;
   if (!parser.parse(argc, argv, &code)) return code;
   o.seed = seed;
@@ -52,7 +60,21 @@ int main(int argc, char** argv) {
   }
   mmh::setLogServiceName("mmh-sim");
   try {
-    const mmh::Config config = mmh::loadNodeConfig(node);
+    mmh::Config config = mmh::loadNodeConfig(node);
+    if (!export_path.empty()) {
+      const std::vector<Eigen::Vector3f> points = mmh::sim::generatedWorldPoints(o);
+      mmh::sim::writePcd(export_path, points);
+      std::cout << "mmh-sim: wrote " << points.size() << " surface points of the " << o.world
+                << " (seed " << o.seed << ", density " << o.density_per_m2 << " /m^2) to "
+                << export_path << std::endl;
+      return 0;
+    }
+    if (fit_geofence) {
+      std::string report;
+      const mmh::Geofence fence = mmh::sim::fitGeofenceToPcd(o.world, config, &report);
+      config = mmh::sim::configWithGeofence(config, fence);
+      std::cout << "mmh-sim: " << report << std::endl;
+    }
     const auto max_scan_lag_us = static_cast<int64_t>(config.getDouble("sim.max_scan_lag_s") * 1e6);
     auto lcm = mmh::openLcm(node.lcm_url);
     mmh::ServiceContext ctx(*lcm, "mmh-sim", node.prefix);

@@ -85,6 +85,7 @@ nlohmann::json toJson(const FlightResult& r) {
       {"stops", r.stops},
       {"wall_time_s", number(r.wall_time_s)},
       {"error", r.error},
+      {"reason", r.reason},
       {"sensor", f.sensor},
       {"size", {f.size_m.x(), f.size_m.y(), f.size_m.z()}},
       {"stop_causes", r.census.causeCounts()},
@@ -129,6 +130,7 @@ FlightResult fromJson(const nlohmann::json& j) {
   r.stops = j.at("stops").get<int>();
   r.wall_time_s = number(j.at("wall_time_s"));
   r.error = j.at("error").get<std::string>();
+  r.reason = j.value("reason", std::string());
   f.sensor = j.at("sensor").get<std::string>();
   for (int i = 0; i < 3; ++i) f.size_m[i] = j.at("size").at(i).get<double>();
   for (const auto& s : j.at("stop_events")) r.census.stops.push_back(stopFromJson(s));

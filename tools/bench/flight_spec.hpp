@@ -37,7 +37,8 @@ struct FlightResult {
   int stops = 0;
   FlightCensus census;  // the stops with their causes, and the stalls
   double wall_time_s = 0;
-  std::string error;  // non-empty when the flight could not run
+  std::string error;   // non-empty when the flight could not run
+  std::string reason;  // non-empty when it flew and failed: why (FlightRecord::failure_reason)
 };
 
 // One JSON object per flight (the results.json record) and back; fromJson throws

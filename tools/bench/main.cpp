@@ -9,13 +9,16 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "bench_report.hpp"
 #include "config_overrides.hpp"
 #include "mmh/common/cli.hpp"
+#include "mmh/common/geofence.hpp"
 #include "mmh/common/log.hpp"
 #include "mmh/common/node_options.hpp"
+#include "mmh/sim/world_file.hpp"
 #include "run_flight.hpp"
 
 #ifndef MMH_SOURCE_DIR
@@ -77,13 +80,13 @@ FlightResult readResult(const std::string& path, const FlightSpec& spec) {
 int main(int argc, char** argv) {
   std::string command;
   for (int i = 0; i < argc; ++i) command += (i ? " " : "") + std::string(argv[i]);
-  const std::vector<std::string> overrides = mmh::takeSetOptions(&argc, argv);
+  std::vector<std::string> overrides = mmh::takeSetOptions(&argc, argv);
   std::string set_help, sensor = "depth";
   std::string methods_text = "mmh,ego,som", densities_text = "0,0.05,0.1,0.2", out_dir;
   std::string config_path, world = "forest", worker_spec, worker_out, paths_dir;
   int maps = 3, trials = 5, jobs = 1, seed = 1;
   double timeout_s = 120.0;
-  bool no_plots = false;
+  bool no_plots = false, fit_geofence = false;
   FlightSpec defaults;
   Eigen::Vector3d start = defaults.start, goal = defaults.goal, size = defaults.size_m;
   mmh::ArgParser parser(
@@ -112,6 +115,9 @@ int main(int argc, char** argv) {
   parser.addVector3("--start", &start, "start x,y,z");
   parser.addVector3("--goal", &goal, "goal x,y,z");
   parser.addDouble("--timeout", &timeout_s, "simulated seconds before a flight counts as failed");
+  parser.addFlag("--fit-geofence", &fit_geofence,
+                 "with --world FILE.pcd: set geofence.min_m / max_m to the file's bounds plus 1 m "
+                 "in x and y (z as configured) for every flight, and print them");
   parser.addFlag("--no-plots", &no_plots, "skip the matplotlib plots");
   parser.addString("--worker-spec", &worker_spec, "(internal) run one flight");
   parser.addString("--worker-out", &worker_out, "(internal) where the worker writes its result");
@@ -161,6 +167,29 @@ int main(int argc, char** argv) {
       return 2;
     }
     world = fs::absolute(world).string();
+  }
+  // A start or goal the arbiter would refuse, or off the world's points, would only make every
+  // flight time out: stop now, with the simulator's own check.
+  try {
+    std::optional<mmh::sim::WorldBounds> bounds;
+    if (!generated_world) bounds = mmh::sim::readPcdBounds(world);
+    if (fit_geofence) {
+      std::string report;
+      const mmh::Geofence fence = mmh::sim::fitGeofenceToPcd(world, config, &report);
+      config = mmh::sim::configWithGeofence(config, fence);
+      // The workers read the configuration again: they get the fence as --set.
+      for (const std::string& a : mmh::sim::geofenceAssignments(fence)) overrides.push_back(a);
+      std::cerr << "mmh-bench: " << report << "\n";
+    }
+    const std::string why = mmh::sim::startGoalViolation(start, goal, mmh::loadGeofence(config),
+                                                         bounds ? &*bounds : nullptr, world);
+    if (!why.empty()) {
+      std::cerr << "mmh-bench: " << why << "\n";
+      return 2;
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "mmh-bench: " << e.what() << "\n";
+    return 2;
   }
 
   // The flights: every method on the same map and trial seeds.
@@ -244,6 +273,13 @@ int main(int argc, char** argv) {
     if (WIFSIGNALED(status)) {
       results[i].error = "worker died with signal " + std::to_string(WTERMSIG(status));
     }
+    if (WIFEXITED(status) && WEXITSTATUS(status) != 0 && results[i].error.empty()) {
+      results[i].error = "worker exited with status " + std::to_string(WEXITSTATUS(status));
+    }
+    // Every failure says why: `error` (it could not fly) or `reason` (it flew and failed).
+    if (!results[i].success && results[i].error.empty() && results[i].reason.empty()) {
+      results[i].reason = "failed without a recorded reason";
+    }
     if (!results[i].success) ++failed;
     ++done;
     progress(done, flights.size(), elapsed(), failed);
@@ -260,6 +296,7 @@ int main(int argc, char** argv) {
             << mmh::bench::stopCensusMarkdown(results);
   for (const FlightResult& r : results) {
     if (!r.error.empty()) std::cerr << r.spec.id() << ": " << r.error << "\n";
+    if (!r.success && r.error.empty()) std::cerr << r.spec.id() << ": " << r.reason << "\n";
   }
   if (!no_plots) {
     const std::string cmd = "/usr/bin/python3 " + std::string(MMH_SOURCE_DIR) +

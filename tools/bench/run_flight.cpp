@@ -44,6 +44,7 @@ FlightResult runFlight(const FlightSpec& spec, const Config& config, double time
     result.collided = m.collided;
     result.timed_out = rec.end_reason == "timeout";
     result.success = rec.success();
+    result.reason = rec.failure_reason;
     result.flight_time_s = m.flight_time_s;
     result.distance_m = m.distance_m;
     result.energy = m.energy;

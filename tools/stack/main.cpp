@@ -1,5 +1,6 @@
 // mmh-stack: flies one mission with every service hosted in this process on memq://, the
 // simulator in lock-step (faster than real time; the same seed gives the same flight).
+#include <cstdio>
 #include <iostream>
 #include <sstream>
 
@@ -9,9 +10,28 @@
 #include "mmh/common/cli.hpp"
 #include "mmh/common/log.hpp"
 #include "mmh/common/node_options.hpp"
+#include "mmh/sim/world_file.hpp"
 #include "stack.hpp"
 
 namespace {
+
+// A JSON string literal of s (quotes, backslashes and control characters escaped).
+std::string jsonString(const std::string& s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof(buf), "\\u%04x", static_cast<unsigned char>(c));
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
 
 // {"cause": count, ...} in the census's (alphabetical) order.
 std::string causeCountsJson(const mmh::FlightCensus& census) {
@@ -52,7 +72,8 @@ int main(int argc, char** argv) {
   mmh::sim::SimOptions sim;
   std::string policy, log_path, waypoints_text, mission_path;
   double timeout_s = 120.0, map_loss = 0.0;
-  bool json = false;
+  bool json = false, fit_geofence = false;
+  std::string export_path;
   int vehicles = 1;
   int seed = static_cast<int>(sim.seed), noise_seed = static_cast<int>(sim.noise_seed);
   mmh::ArgParser parser("mmh-stack",
@@ -88,6 +109,12 @@ int main(int argc, char** argv) {
                    "key=value: override one configuration key (repeatable; the key must exist)");
   parser.addInt("--vehicles", &vehicles,
                 "vehicles in the one simulation (prefixes <prefix>UAV1_ ..., seeds +0, +1, ...)");
+  parser.addFlag("--fit-geofence", &fit_geofence,
+                 "with --world FILE.pcd: set geofence.min_m / max_m to the file's bounds plus 1 m "
+                 "in x and y (z as configured), and print them");
+  parser.addString("--export-world", &export_path,
+                   "write the generated world (forest, ego-forest) as a PCD file of surface "
+                   "points (0.05 m apart) and exit");
   int code = 0;
   if (!parser.parse(argc, argv, &code)) return code;
   sim.seed = seed;
@@ -96,6 +123,21 @@ int main(int argc, char** argv) {
   try {
     mmh::StackOptions options;
     options.config = mmh::loadConfigWithOverrides(node, overrides);
+    if (!export_path.empty()) {
+      const std::vector<Eigen::Vector3f> points = mmh::sim::generatedWorldPoints(sim);
+      mmh::sim::writePcd(export_path, points);
+      std::cout << "mmh-stack: wrote " << points.size() << " surface points of the " << sim.world
+                << " (seed " << sim.seed << ", density " << sim.density_per_m2 << " /m^2) to "
+                << export_path << std::endl;
+      return 0;
+    }
+    if (fit_geofence) {
+      std::string report;
+      const mmh::Geofence fence = mmh::sim::fitGeofenceToPcd(sim.world, options.config, &report);
+      options.config = mmh::sim::configWithGeofence(options.config, fence);
+      // On stderr: --json keeps stdout to the one result object.
+      std::cerr << "mmh-stack: " << report << std::endl;
+    }
     options.sim = sim;
     options.prefix = node.prefix;
     options.policy = policy;
@@ -119,7 +161,10 @@ int main(int argc, char** argv) {
     for (const auto& c : r.calls) cost_sum += c.compute_ms;
     const int iterations = static_cast<int>(r.calls.size());
     if (json) {
-      std::cout << "{\"result\": \"" << r.end_reason << "\", \"flight_time_s\": " << m.flight_time_s
+      // A failure says why (only then, so a success's JSON stays as it was).
+      const std::string reason = r.success() ? "" : ", \"reason\": " + jsonString(r.failure_reason);
+      std::cout << "{\"result\": \"" << r.end_reason << "\"" << reason
+                << ", \"flight_time_s\": " << m.flight_time_s
                 << ", \"distance_m\": " << m.distance_m << ", \"energy\": " << m.energy
                 << ", \"iterations\": " << iterations << ", \"fpm\": " << r.iterations[1]
                 << ", \"som\": " << r.iterations[2] << ", \"eam\": " << r.iterations[3]
@@ -132,8 +177,9 @@ int main(int argc, char** argv) {
                 << ", \"trajectory_digest\": \"" << std::hex << r.trajectory_digest << std::dec
                 << "\"" << missionJson(m) << "}\n";
     } else {
-      std::cout << "result:        " << r.end_reason << "\n"
-                << "flight time:   " << m.flight_time_s << " s (bound " << m.time_bound_s << " s)\n"
+      std::cout << "result:        " << r.end_reason << "\n";
+      if (!r.success()) std::cout << "reason:        " << r.failure_reason << "\n";
+      std::cout << "flight time:   " << m.flight_time_s << " s (bound " << m.time_bound_s << " s)\n"
                 << "distance:      " << m.distance_m << " m\n"
                 << "energy:        " << m.energy << " m^2/s^5\n"
                 << "iterations:    " << iterations << " (FPM " << r.iterations[1] << ", SOM "

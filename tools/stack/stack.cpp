@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 
 #include "mmh/arbiter_status_t.hpp"
@@ -43,7 +44,33 @@ class Recorder {
   const sim::Simulator* sim_;
 };
 
+std::string fixed(double v, int digits) {
+  std::ostringstream out;
+  out.setf(std::ios::fixed);
+  out.precision(digits);
+  out << v;
+  return out.str();
+}
+
 }  // namespace
+
+std::string failureReason(const FailureEvidence& e) {
+  if (e.collided) {
+    const Eigen::Vector3d& p = e.collision_position;
+    return "collided at [" + fixed(p.x(), 2) + ", " + fixed(p.y(), 2) + ", " + fixed(p.z(), 2) +
+           "] after " + fixed(e.collision_time_s, 2) + " s";
+  }
+  if (e.reached) return "";
+  if (!e.rejected_detail.empty()) return "refused goal: " + e.rejected_detail;
+  if (!e.unreachable_detail.empty()) return "unreachable: " + e.unreachable_detail;
+  const std::string left = fixed(e.distance_to_goal_m, 2) + " m from the goal";
+  if (e.longest_no_progress_s >= e.stuck_after_s) {
+    return "stuck: no progress toward the goal for " + fixed(e.longest_no_progress_s, 1) +
+           " s from " + fixed(e.longest_no_progress_from_s, 1) + " s; timeout after " +
+           fixed(e.sim_time_s, 1) + " s, " + left;
+  }
+  return "timeout: not reached after " + fixed(e.sim_time_s, 1) + " s, " + left;
+}
 
 // The services of one vehicle (one channel prefix) and the observer that records its flight.
 struct Vehicle {
@@ -58,6 +85,7 @@ struct Vehicle {
   int current_mode = 0;
   int64_t t0 = 0, next_sample = 0;
   bool done = false;
+  std::string rejected_detail, unreachable_detail;  // the arbiter's last words on the goal
 
   Vehicle(lcm::LCM& bus, const StackOptions& opts) : options(opts) {
     PlannerHostOptions h;
@@ -128,6 +156,20 @@ struct Vehicle {
         record.metrics.collided ? "collided" : (record.metrics.reached ? "reached" : "timeout");
     record.wall_time_s = wall_time_s;
     record.census = census.finish(sinceStart(sim->nowUtime()));
+    FailureEvidence e;
+    e.reached = record.metrics.reached;
+    e.collided = record.metrics.collided;
+    e.collision_time_s = record.metrics.collision_utime >= 0
+                             ? sinceStart(record.metrics.collision_utime)
+                             : record.sim_time_s;
+    e.collision_position = record.metrics.collision_position;
+    e.sim_time_s = record.sim_time_s;
+    e.distance_to_goal_m = (sim->simulator().vehicle().state().position - options.sim.goal).norm();
+    e.rejected_detail = rejected_detail;
+    e.unreachable_detail = unreachable_detail;
+    e.longest_no_progress_s = record.census.longest_no_progress_s;
+    e.longest_no_progress_from_s = record.census.longest_no_progress_from_s;
+    record.failure_reason = failureReason(e);
     done = true;
   }
 
@@ -157,6 +199,14 @@ struct Vehicle {
   }
   void onStatus(const arbiter_status_t& msg) {
     if (msg.outcome == arbiter_status_t::OUTCOME_FAILED) ++record.failed_decisions;
+    const std::string detail = msg.detail.empty() ? "(no detail)" : msg.detail;
+    if (msg.outcome == arbiter_status_t::OUTCOME_REJECTED) rejected_detail = detail;
+    if (msg.outcome == arbiter_status_t::OUTCOME_UNREACHABLE) unreachable_detail = detail;
+    // A goal accepted later (moved, committed to) is no longer refused.
+    if (msg.outcome == arbiter_status_t::OUTCOME_COMMITTED ||
+        msg.outcome == arbiter_status_t::OUTCOME_GOAL_MOVED) {
+      rejected_detail.clear();
+    }
     DecisionSample d;
     d.time_s = sinceStart(sim->nowUtime());
     d.trigger = msg.trigger;

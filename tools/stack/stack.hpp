@@ -58,6 +58,10 @@ struct PathSample {
 struct FlightRecord {
   sim::MissionMetrics metrics;
   std::string end_reason;  // "reached", "collided" or "timeout"
+  // Why a flight that did not succeed failed, never empty for one: "refused goal: ...",
+  // "unreachable: ...", "stuck: ...", "collided ..." or "timeout: ..." (failureReason). Empty
+  // for a success.
+  std::string failure_reason;
   std::vector<PlanCall> calls;
   std::array<int, 5> iterations{};  // planning calls per mode index
   int commits = 0, stops = 0, failed_decisions = 0;
@@ -70,6 +74,21 @@ struct FlightRecord {
   double wall_time_s = 0.0;
   bool success() const { return metrics.reached && !metrics.collided; }
 };
+
+// What the flight's end and the arbiter said make of a failure (the text of
+// FlightRecord::failure_reason): a collision first; then, for a timeout, the arbiter's last refusal
+// of the goal, else its last "unreachable", else a long stretch without progress ("stuck", at
+// least stuck_after_s), else the plain timeout with the distance left. Empty for a success.
+struct FailureEvidence {
+  bool reached = false, collided = false;
+  double collision_time_s = 0.0;
+  Eigen::Vector3d collision_position = Eigen::Vector3d::Zero();
+  double sim_time_s = 0.0, distance_to_goal_m = 0.0;
+  std::string rejected_detail, unreachable_detail;  // the arbiter's last, if any
+  double longest_no_progress_s = 0.0, longest_no_progress_from_s = 0.0;
+  double stuck_after_s = 10.0;
+};
+std::string failureReason(const FailureEvidence& e);
 
 class Stack {
  public:

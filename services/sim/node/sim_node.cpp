@@ -23,6 +23,23 @@ SimNode::SimNode(ServiceContext& ctx, const Config& config, const SimOptions& op
     ctx_.subscribe(channels::kTrajectory, &SimNode::onTrajectory, this);
   }
   ctx_.subscribe(channels::kGoal, &SimNode::onGoal, this);
+  ctx_.subscribe(channels::kArbiterStatus, &SimNode::onArbiterStatus, this);
+}
+
+void SimNode::onArbiterStatus(const arbiter_status_t& msg) {
+  if (msg.outcome != arbiter_status_t::OUTCOME_GOAL_MOVED) return;
+  // The detail names the goal ("goal 3: ..."): a move of an older goal is not this one's.
+  const std::string prefix = "goal " + std::to_string(sim_.metrics().goal_id) + ":";
+  if (msg.detail.compare(0, prefix.size(), prefix) != 0) return;
+  const Eigen::Vector3d moved = toVec3(msg.local_target);
+  if (sim_.acceptMovedGoal(moved)) {
+    logInfo(ctx_.service() + ": arrival measured at the moved goal (" + std::to_string(moved.x()) +
+            ", " + std::to_string(moved.y()) + ", " + std::to_string(moved.z()) + ")");
+  } else {
+    logWarn(ctx_.service() +
+            ": the arbiter moved the goal beyond arbiter.goal_relocate_radius_m; "
+            "arrival is still measured at the goal sent");
+  }
 }
 
 void SimNode::onTrajectory(const trajectory_t& msg) {

@@ -1,13 +1,15 @@
 // mmh-sim as a message-driven node: advances the Simulator one step per step() call and publishes
 // ODOMETRY (every step), POINTCLOUD (sensor rate) and MISSION_STATUS (status rate and on reach or
 // collision); takes TRAJECTORY (the committed one) or, with --follow setpoint, SETPOINT, and GOAL
-// (for the mission status). No thread,
-// no wall clock: mmh-stack calls step() in lock-step, main.cpp paces it in real time.
+// (for the mission status), and ARBITER_STATUS for a goal the arbiter moved out of an obstacle
+// (arrival is then measured there, within arbiter.goal_relocate_radius_m of the goal sent). No
+// thread, no wall clock: mmh-stack calls step() in lock-step, main.cpp paces it in real time.
 #pragma once
 
 #include <cstdint>
 #include <memory>
 
+#include "mmh/arbiter_status_t.hpp"
 #include "mmh/common/config.hpp"
 #include "mmh/common/lcm_runtime.hpp"
 #include "mmh/goal_t.hpp"
@@ -44,6 +46,7 @@ class SimNode {
   void onTrajectory(const trajectory_t& msg);
   void onGoal(const goal_t& msg);
   void onSetpoint(const setpoint_t& msg);
+  void onArbiterStatus(const arbiter_status_t& msg);
 
   ServiceContext& ctx_;
   sim::Simulator sim_;

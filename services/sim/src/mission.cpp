@@ -37,6 +37,7 @@ MissionMonitor::MissionMonitor(const World& world, const SimParams& params,
     : world_(world), params_(params) {
   metrics_.start = start;
   metrics_.goal = goal;
+  arrival_point_ = goal;
   computeBound();
 }
 
@@ -62,17 +63,28 @@ void MissionMonitor::setMissionGoal(const MissionGoal& goal) {
   goal_ = goal;
   if (!moved) return;
   metrics_.goal = goal.position;
+  arrival_point_ = goal.position;
+  metrics_.goal_moved = false;
   metrics_.reached = false;
   metrics_.arrival_utime = -1;
   arrived_at_goal_ = false;
   if (goal.isLastWaypoint()) computeBound();
 }
 
+bool MissionMonitor::acceptMovedGoal(const Eigen::Vector3d& moved, double radius_m) {
+  if (!moved.allFinite() || (moved - metrics_.goal).norm() > radius_m + 1e-6) return false;
+  if (metrics_.reached) return true;  // already arrived: the metrics stay as they are
+  arrival_point_ = moved;
+  metrics_.goal_moved = true;
+  metrics_.moved_goal = moved;
+  return true;
+}
+
 bool MissionMonitor::goalReachedNow(const Eigen::Vector3d& position, double speed_mps) const {
   if (goal_.num_waypoints <= 1)
-    return (position - metrics_.goal).norm() <= params_.goal_tolerance_m;
+    return (position - arrival_point_).norm() <= params_.goal_tolerance_m;
   Waypoint w;
-  w.position = metrics_.goal;
+  w.position = arrival_point_;
   w.tolerance_m = goal_.tolerance_m > 0.0 ? goal_.tolerance_m : params_.goal_tolerance_m;
   w.stop = goal_.stop || goal_.isLastWaypoint();
   return waypointReached(w, position, speed_mps, params_.mission_stop_speed_mps);

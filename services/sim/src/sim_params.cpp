@@ -13,6 +13,7 @@ SimParams loadSimParams(const Config& c) {
   p.pointcloud_rate_hz = c.getDouble("sim.pointcloud_rate_hz");
   p.mission_status_rate_hz = c.getDouble("sim.mission_status_rate_hz");
   p.goal_tolerance_m = c.getDouble("sim.goal_tolerance_m");
+  p.goal_relocate_radius_m = c.getDouble("arbiter.goal_relocate_radius_m");
   p.stop_on_collision = c.getBool("sim.stop_on_collision");
   p.max_yaw_rate_dps = c.getDouble("sim.max_yaw_rate_dps");
   p.yaw_time_constant_s = c.getDouble("sim.yaw_time_constant_s");

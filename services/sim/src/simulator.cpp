@@ -8,6 +8,7 @@
 #include "mmh/sim/ego_forest_world.hpp"
 #include "mmh/sim/forest_world.hpp"
 #include "mmh/sim/pointcloud_world.hpp"
+#include "mmh/sim/world_file.hpp"
 
 namespace mmh::sim {
 namespace {
@@ -25,17 +26,29 @@ const SimOptions& checkedOptions(const SimOptions& options, const SimParams& par
   if (!options.start.allFinite() || !options.goal.allFinite()) {
     throw std::runtime_error("start and goal must be finite");
   }
-  const Geofence fence{params.geofence_min_m, params.geofence_max_m};
-  for (const auto& [point, name] :
-       {std::pair{options.start, "the start"}, std::pair{options.goal, "the goal"}}) {
-    const std::string why = geofenceViolation(fence, point, name);
-    if (!why.empty()) throw std::runtime_error(why);
-  }
+  const std::string why =
+      startGoalViolation(options.start, options.goal,
+                         Geofence{params.geofence_min_m, params.geofence_max_m}, nullptr, "");
+  if (!why.empty()) throw std::runtime_error(why);
   if (options.follow != "trajectory" && options.follow != "setpoint") {
     throw std::runtime_error("unknown --follow '" + options.follow +
                              "' (use trajectory or setpoint)");
   }
   return options;
+}
+
+// The same for a world with bounds (a PCD world): a start or goal beyond the points in x or y
+// flies off the map, where the time bound's search and the planners find nothing to go by.
+std::unique_ptr<World> checkedWorld(std::unique_ptr<World> world, const SimOptions& options,
+                                    const SimParams& params) {
+  if (const auto* cloud = dynamic_cast<const PointCloudWorld*>(world.get())) {
+    const WorldBounds bounds{cloud->minCorner(), cloud->maxCorner()};
+    const std::string why = startGoalViolation(
+        options.start, options.goal, Geofence{params.geofence_min_m, params.geofence_max_m},
+        &bounds, options.world);
+    if (!why.empty()) throw std::runtime_error(why);
+  }
+  return world;
 }
 
 bool endsWith(const std::string& s, const std::string& suffix) {
@@ -101,7 +114,7 @@ Simulator::Simulator(const SimParams& params, const SimOptions& options,
                      std::unique_ptr<World> world)
     : params_(params),
       options_(checkedOptions(options, params)),
-      world_(std::move(world)),
+      world_(checkedWorld(std::move(world), options_, params_)),
       step_us_(std::max<int64_t>(1, std::llround(params.step_s * 1e6))),
       vehicle_(options.start, initialYaw(options), options.start_utime, params),
       sensor_(parseSensorKind(options.sensor), params, static_cast<uint64_t>(options.noise_seed)),

@@ -167,3 +167,39 @@ TEST(Mission, CollisionAndClearanceAgainstGroundTruth) {
   EXPECT_GT(m.shortest_path_m, 4.0);
   EXPECT_LT(m.shortest_path_m, 4.0 + 0.3);
 }
+
+TEST(Mission, ArrivalAtAGoalTheArbiterMovedWithinTheRadiusOnly) {
+  const mmh::sim::ForestWorld empty({});
+  mmh::sim::SimParams params;
+  params.goal_relocate_radius_m = 1.5;
+  const Vector3d start(0, 0, 1), goal(4, 0, 1), moved(4, 1.0, 1);
+  mmh::sim::MissionMonitor monitor(empty, params, start, goal);
+  monitor.setGoal(goal, 1);
+  // Beyond the radius: refused, the goal sent still counts.
+  EXPECT_FALSE(monitor.acceptMovedGoal(Vector3d(4, 2.0, 1), 1.5));
+  EXPECT_FALSE(monitor.metrics().goal_moved);
+  EXPECT_TRUE(monitor.acceptMovedGoal(moved, 1.5));
+  EXPECT_TRUE(monitor.metrics().goal_moved);
+  EXPECT_EQ(monitor.metrics().goal, goal);  // the goal sent, unchanged
+  EXPECT_EQ(monitor.metrics().moved_goal, moved);
+  // The same goal sent again keeps the moved point.
+  monitor.setGoal(goal, 1);
+  EXPECT_TRUE(monitor.metrics().goal_moved);
+  // Fly to the moved goal: 1 m from the goal sent (beyond its 0.3 m tolerance), reached.
+  mmh::sim::Vehicle vehicle(start, 0.0, kT0, params);
+  vehicle.commit(mmh::test::minJerkTraj(start, moved, 4.0), kT0 + 100'000, 1);
+  std::vector<mmh::sim::FlownPart> flown;
+  int64_t now = kT0;
+  while (!monitor.metrics().reached && now < kT0 + 10'000'000) {
+    now += kStep;
+    flown.clear();
+    vehicle.advance(now, &flown);
+    monitor.update(now, vehicle, flown);
+  }
+  EXPECT_TRUE(monitor.metrics().reached);
+  EXPECT_LE((vehicle.state().position - moved).norm(), params.goal_tolerance_m);
+  // A new goal position forgets the move.
+  monitor.setGoal(Vector3d(8, 0, 1), 2);
+  EXPECT_FALSE(monitor.metrics().goal_moved);
+  EXPECT_FALSE(monitor.metrics().reached);
+}

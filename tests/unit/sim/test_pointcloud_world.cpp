@@ -71,7 +71,12 @@ TEST(PointCloudWorld, ShortestPathGoesAroundTheWall) {
 
 TEST(PointCloudWorld, SimulatorFliesInAPcdWorld) {
   const std::string path = tempPath("wall_sim.pcd");
-  mmh::test::writePcd(path, mmh::test::wallPoints(3.0, 2.0, 3.0, 0.02));
+  // The wall, and two points on the ground that make the world span the start and the goal
+  // (outside its bounds they would be refused).
+  auto points = mmh::test::wallPoints(3.0, 2.0, 3.0, 0.02);
+  points.emplace_back(-1.0f, 0.0f, 0.0f);
+  points.emplace_back(7.0f, 0.0f, 0.0f);
+  mmh::test::writePcd(path, points);
   mmh::sim::SimOptions options;
   options.world = path;
   options.start = Vector3d(0, 0, 1.2);

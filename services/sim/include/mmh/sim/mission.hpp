@@ -36,7 +36,11 @@ struct WaypointArrival {
 struct MissionMetrics {
   Eigen::Vector3d start = Eigen::Vector3d::Zero();
   Eigen::Vector3d goal = Eigen::Vector3d::Zero();
-  int64_t goal_id = 0;         // 0 until a GOAL message set it
+  int64_t goal_id = 0;  // 0 until a GOAL message set it
+  // The arbiter moved the goal out of an obstacle (ARBITER_STATUS OUTCOME_GOAL_MOVED) and arrival
+  // is measured at moved_goal (see MissionMonitor::acceptMovedGoal); `goal` stays the goal sent.
+  bool goal_moved = false;
+  Eigen::Vector3d moved_goal = Eigen::Vector3d::Zero();
   bool started = false;        // the first committed trajectory has started
   bool reached = false;        // within the tolerance of the goal, no collision before
   bool collided = false;       // the vehicle sphere touched an obstacle at some step
@@ -77,6 +81,11 @@ class MissionMonitor {
   // its stop), the mission reached at the last one. The time bound is that of the last leg's goal
   // from the start (it means something for a single goal only).
   void setMissionGoal(const MissionGoal& goal);
+  // The arbiter moved the current goal to `moved` (out of an obstacle's margin). Arrival is then
+  // measured at `moved`, the point the planners fly to, but only if it lies within radius_m
+  // (arbiter.goal_relocate_radius_m) of the goal sent: the ground truth cannot be talked into
+  // "reached" anywhere else. Returns whether it was accepted. A new goal position resets it.
+  bool acceptMovedGoal(const Eigen::Vector3d& moved, double radius_m);
 
   // Accounts one step: the parts flown since the last update, the vehicle's jumps so far, and
   // its state at now_utime. Returns true if reached or collided became true in this update.
@@ -95,6 +104,7 @@ class MissionMonitor {
   SimParams params_;
   MissionMetrics metrics_;
   MissionGoal goal_;
+  Eigen::Vector3d arrival_point_ = Eigen::Vector3d::Zero();  // the goal, or the moved goal
   bool arrived_at_goal_ = false;
   double jumps_seen_m_ = 0.0;
   int jumps_seen_ = 0;

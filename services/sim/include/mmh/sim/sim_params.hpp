@@ -34,6 +34,9 @@ struct SimParams {
   double pointcloud_rate_hz = 15.0;  // sensor frames per second of simulated time
   double mission_status_rate_hz = 10.0;
   double goal_tolerance_m = 0.3;  // reached = centre within this distance of the goal
+  // arbiter.goal_relocate_radius_m: how far from the goal sent a goal moved by the arbiter may
+  // be and still count (MissionMonitor::acceptMovedGoal).
+  double goal_relocate_radius_m = 1.5;
   bool stop_on_collision = true;  // finished() once the vehicle touched an obstacle
   // Yaw follows the direction of flight: the direction to the point yaw_lookahead_s ahead on the
   // trajectory, through a first-order lag with yaw_time_constant_s, limited to max_yaw_rate_dps.

@@ -47,7 +47,8 @@ SensorKind parseSensorKind(const std::string& name);  // throws std::runtime_err
 class Simulator {
  public:
   // Throws std::runtime_error for bad options (see makeWorld; also a start inside an obstacle, a
-  // start or goal outside the geofence, an unknown --follow).
+  // start or goal outside the geofence or, in a PCD world, outside the points' bounds in x and y,
+  // an unknown --follow).
   Simulator(const SimParams& params, const SimOptions& options);
   Simulator(const SimParams& params, const SimOptions& options, std::unique_ptr<World> world);
 
@@ -66,6 +67,10 @@ class Simulator {
   void setGoal(const Eigen::Vector3d& goal, int64_t goal_id) { monitor_.setGoal(goal, goal_id); }
   // A goal that is one waypoint of a mission (goal_t's mission fields).
   void setMissionGoal(const MissionGoal& goal) { monitor_.setMissionGoal(goal); }
+  // The arbiter moved the current goal (MissionMonitor::acceptMovedGoal).
+  bool acceptMovedGoal(const Eigen::Vector3d& moved) {
+    return monitor_.acceptMovedGoal(moved, params_.goal_relocate_radius_m);
+  }
   // Following setpoints: the newest SETPOINT.
   void setSetpoint(const SetpointSample& setpoint) { vehicle_.setSetpoint(setpoint); }
   bool followsSetpoints() const { return vehicle_.followsSetpoints(); }
