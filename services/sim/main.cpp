@@ -62,11 +62,7 @@ int main(int argc, char** argv) {
   try {
     mmh::Config config = mmh::loadNodeConfig(node);
     if (!export_path.empty()) {
-      const std::vector<Eigen::Vector3f> points = mmh::sim::generatedWorldPoints(o);
-      mmh::sim::writePcd(export_path, points);
-      std::cout << "mmh-sim: wrote " << points.size() << " surface points of the " << o.world
-                << " (seed " << o.seed << ", density " << o.density_per_m2 << " /m^2) to "
-                << export_path << std::endl;
+      std::cout << "mmh-sim: " << mmh::sim::exportWorld(o, export_path) << std::endl;
       return 0;
     }
     if (fit_geofence) {

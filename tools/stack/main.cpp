@@ -124,11 +124,7 @@ int main(int argc, char** argv) {
     mmh::StackOptions options;
     options.config = mmh::loadConfigWithOverrides(node, overrides);
     if (!export_path.empty()) {
-      const std::vector<Eigen::Vector3f> points = mmh::sim::generatedWorldPoints(sim);
-      mmh::sim::writePcd(export_path, points);
-      std::cout << "mmh-stack: wrote " << points.size() << " surface points of the " << sim.world
-                << " (seed " << sim.seed << ", density " << sim.density_per_m2 << " /m^2) to "
-                << export_path << std::endl;
+      std::cout << "mmh-stack: " << mmh::sim::exportWorld(sim, export_path) << std::endl;
       return 0;
     }
     if (fit_geofence) {

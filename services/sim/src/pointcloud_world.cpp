@@ -1,6 +1,5 @@
 #include "mmh/sim/pointcloud_world.hpp"
 
-#include <pcl/io/pcd_io.h>
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_types.h>
 
@@ -12,6 +11,7 @@
 #include "cell_traversal.hpp"
 #include "mmh/common/voxel_grid.hpp"
 #include "mmh/sim/shortest_path.hpp"
+#include "mmh/sim/world_file.hpp"
 
 namespace mmh::sim {
 
@@ -75,17 +75,7 @@ PointCloudWorld::~PointCloudWorld() = default;
 
 std::unique_ptr<PointCloudWorld> PointCloudWorld::loadPcd(const std::string& path,
                                                           const PointCloudWorldOptions& options) {
-  pcl::PointCloud<pcl::PointXYZ> cloud;
-  int status = -1;
-  try {
-    status = pcl::io::loadPCDFile<pcl::PointXYZ>(path, cloud);
-  } catch (const std::exception& e) {
-    throw std::runtime_error("cannot read PCD file " + path + ": " + e.what());
-  }
-  if (status < 0) throw std::runtime_error("cannot read PCD file " + path);
-  std::vector<Eigen::Vector3f> points;
-  points.reserve(cloud.size());
-  for (const auto& p : cloud) points.emplace_back(p.x, p.y, p.z);
+  const std::vector<Eigen::Vector3f> points = readPcdPoints(path);
   try {
     return std::make_unique<PointCloudWorld>(points, options);
   } catch (const std::invalid_argument&) {

@@ -51,9 +51,16 @@ std::unique_ptr<World> checkedWorld(std::unique_ptr<World> world, const SimOptio
   return world;
 }
 
-bool endsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() &&
-         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+// The fields both generators' specifications share.
+template <class Spec>
+Spec specOf(const SimOptions& options) {
+  Spec spec;
+  spec.size_m = options.size_m;
+  spec.density_per_m2 = options.density_per_m2;
+  spec.seed = static_cast<uint64_t>(options.seed);
+  spec.start = options.start;
+  spec.goal = options.goal;
+  return spec;
 }
 
 }  // namespace
@@ -64,38 +71,34 @@ SensorKind parseSensorKind(const std::string& name) {
   throw std::runtime_error("unknown sensor '" + name + "' (use depth or lidar)");
 }
 
+ForestSpec forestSpecOf(const SimOptions& options) {
+  return specOf<ForestSpec>(options);
+}
+
+EgoForestSpec egoForestSpecOf(const SimOptions& options) {
+  return specOf<EgoForestSpec>(options);
+}
+
 std::unique_ptr<World> makeWorld(const SimOptions& options, const SimParams& params) {
   if (options.world == "forest") {
-    ForestSpec spec;
-    spec.size_m = options.size_m;
-    spec.density_per_m2 = options.density_per_m2;
-    spec.seed = static_cast<uint64_t>(options.seed);
-    spec.start = options.start;
-    spec.goal = options.goal;
     try {
-      return std::make_unique<ForestWorld>(generateForest(spec));
+      return std::make_unique<ForestWorld>(generateForest(forestSpecOf(options)));
     } catch (const std::invalid_argument& e) {
       throw std::runtime_error(e.what());
     }
   }
   if (options.world == "ego-forest") {
-    EgoForestSpec spec;
-    spec.size_m = options.size_m;
-    spec.density_per_m2 = options.density_per_m2;
-    spec.seed = static_cast<uint64_t>(options.seed);
-    spec.start = options.start;
-    spec.goal = options.goal;
     EgoForestBoundOptions bound;
     bound.grid_m = params.bound_grid_m;
     bound.min_m = params.geofence_min_m;
     bound.max_m = params.geofence_max_m;
     try {
-      return std::make_unique<EgoForestWorld>(generateEgoForest(spec), bound);
+      return std::make_unique<EgoForestWorld>(generateEgoForest(egoForestSpecOf(options)), bound);
     } catch (const std::invalid_argument& e) {
       throw std::runtime_error(e.what());
     }
   }
-  if (endsWith(options.world, ".pcd")) {
+  if (isPcdWorld(options.world)) {
     PointCloudWorldOptions o;
     o.voxel_m = params.pcd_voxel_m;
     o.bound_grid_m = params.bound_grid_m;

@@ -110,7 +110,7 @@ bool isPcdWorld(const std::string& world) {
          world.compare(world.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-WorldBounds readPcdBounds(const std::string& path) {
+std::vector<Eigen::Vector3f> readPcdPoints(const std::string& path) {
   pcl::PointCloud<pcl::PointXYZ> cloud;
   int status = -1;
   try {
@@ -119,12 +119,19 @@ WorldBounds readPcdBounds(const std::string& path) {
     throw std::runtime_error("cannot read PCD file " + path + ": " + e.what());
   }
   if (status < 0) throw std::runtime_error("cannot read PCD file " + path);
+  std::vector<Eigen::Vector3f> points;
+  points.reserve(cloud.size());
+  for (const auto& p : cloud) points.emplace_back(p.x, p.y, p.z);
+  return points;
+}
+
+WorldBounds readPcdBounds(const std::string& path) {
   WorldBounds b;
   b.min_m = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
   b.max_m = -b.min_m;
   bool any = false;
-  for (const auto& p : cloud) {
-    const Eigen::Vector3d q(p.x, p.y, p.z);
+  for (const Eigen::Vector3f& p : readPcdPoints(path)) {
+    const Eigen::Vector3d q = p.cast<double>();
     if (!q.allFinite()) continue;
     b.min_m = b.min_m.cwiseMin(q);
     b.max_m = b.max_m.cwiseMax(q);
@@ -216,23 +223,12 @@ std::vector<Eigen::Vector3f> generatedWorldPoints(const SimOptions& options, dou
   std::vector<Eigen::Vector3f> points;
   try {
     if (options.world == "forest") {
-      ForestSpec spec;
-      spec.size_m = options.size_m;
-      spec.density_per_m2 = options.density_per_m2;
-      spec.seed = static_cast<uint64_t>(options.seed);
-      spec.start = options.start;
-      spec.goal = options.goal;
-      for (const Cylinder& c : generateForest(spec)) addCylinder(c, spacing_m, &points);
+      for (const Cylinder& c : generateForest(forestSpecOf(options)))
+        addCylinder(c, spacing_m, &points);
       return points;
     }
     if (options.world == "ego-forest") {
-      EgoForestSpec spec;
-      spec.size_m = options.size_m;
-      spec.density_per_m2 = options.density_per_m2;
-      spec.seed = static_cast<uint64_t>(options.seed);
-      spec.start = options.start;
-      spec.goal = options.goal;
-      const EgoForest forest = generateEgoForest(spec);
+      const EgoForest forest = generateEgoForest(egoForestSpecOf(options));
       for (const EgoPillar& p : forest.pillars) {
         for (const EgoColumn& c : p.columns) addColumn(c, spacing_m, &points);
       }
@@ -261,6 +257,15 @@ void writePcd(const std::string& path, const std::vector<Eigen::Vector3f>& point
     throw std::runtime_error("cannot write PCD file " + path + ": " + e.what());
   }
   if (status < 0) throw std::runtime_error("cannot write PCD file " + path);
+}
+
+std::string exportWorld(const SimOptions& options, const std::string& path) {
+  const std::vector<Eigen::Vector3f> points = generatedWorldPoints(options);
+  writePcd(path, points);
+  std::ostringstream report;
+  report << "wrote " << points.size() << " surface points of the " << options.world << " (seed "
+         << options.seed << ", density " << options.density_per_m2 << " /m^2) to " << path;
+  return report.str();
 }
 
 }  // namespace mmh::sim

@@ -9,6 +9,8 @@
 #include <memory>
 #include <string>
 
+#include "mmh/common/forest.hpp"
+#include "mmh/sim/ego_forest.hpp"
 #include "mmh/sim/mission.hpp"
 #include "mmh/sim/sensor.hpp"
 #include "mmh/sim/sim_params.hpp"
@@ -38,6 +40,11 @@ struct SimOptions {
   // SETPOINT stream of mmh-setpoint, through the tracking model).
   std::string follow = "trajectory";
 };
+
+// The generators' specifications of the forest / ego-forest the options describe (size,
+// density, seed, start and goal), for the simulated world and for --export-world alike.
+ForestSpec forestSpecOf(const SimOptions& options);
+EgoForestSpec egoForestSpecOf(const SimOptions& options);
 
 // The world the options describe. Throws std::runtime_error with the reason (unreadable PCD,
 // impossible forest, unknown world).

@@ -23,6 +23,10 @@ struct WorldBounds {
 
 bool isPcdWorld(const std::string& world);  // a path ending in .pcd
 
+// The points of a PCD file (x, y, z as stored, non-finite ones included); throws
+// std::runtime_error when it cannot be read.
+std::vector<Eigen::Vector3f> readPcdPoints(const std::string& path);
+
 // The bounding box of the finite points of a PCD file; throws std::runtime_error with the reason
 // (unreadable file, no finite point).
 WorldBounds readPcdBounds(const std::string& path);
@@ -62,5 +66,9 @@ std::vector<Eigen::Vector3f> generatedWorldPoints(const SimOptions& options,
 
 // Writes the points as a binary PCD (x, y, z); throws std::runtime_error on failure.
 void writePcd(const std::string& path, const std::vector<Eigen::Vector3f>& points);
+
+// --export-world: the generated world's surface points written to `path`; returns the line that
+// says what was written (for the tool to print).
+std::string exportWorld(const SimOptions& options, const std::string& path);
 
 }  // namespace mmh::sim
