@@ -158,8 +158,8 @@ void ArbiterNode::flush() {
   // Latencies as gauges (ms), so that mmh-top and a log show what the budget sees.
   auto milliseconds = [](double seconds) { return static_cast<int64_t>(seconds * 1e3); };
   ctx_.setCounter("answer_latency_p99_ms",
-                  milliseconds(arbiter_.latencies().worstAnswerLatency(0.99)));
-  ctx_.setCounter("map_age_p99_ms", milliseconds(arbiter_.latencies().mapAge(0.99)));
+                  milliseconds(arbiter_.latencyBudget().answer_latency_p99_s));
+  ctx_.setCounter("map_age_p99_ms", milliseconds(arbiter_.latencyBudget().map_age_p99_s));
   ctx_.setCounter("answer_deadline_ms", milliseconds(arbiter_.latencyBudget().answer_deadline_s));
   if (arbiter_.odometryStale(now)) {
     ctx_.setState(heartbeat_t::STATE_DEGRADED, "ODOMETRY is stale: not planning");

@@ -132,6 +132,8 @@ bool shouldStop(StopCause cause, const StopView& v, const ArbiterParams& params)
 LatencyBudget latencyBudget(double answer_p99_s, double map_age_p99_s,
                             const ArbiterParams& params) {
   LatencyBudget b;
+  b.answer_latency_p99_s = answer_p99_s;
+  b.map_age_p99_s = map_age_p99_s;
   b.answer_deadline_s = params.answer_deadline_s;
   b.replan_lead_s = params.replan_lead_s;
   const double needed_s = params.latency_headroom * answer_p99_s;

@@ -64,6 +64,7 @@ TEST(LatencyBudget, AnswersWithinTheDeadlineKeepTheConfiguredBudget) {
 TEST(LatencyBudget, LateAnswersLengthenDeadlineAndLeadUpToTheCap) {
   ArbiterParams p;
   const LatencyBudget b = latencyBudget(0.1, 0.0, p);
+  EXPECT_EQ(b.answer_latency_p99_s, 0.1);         // what the budget was made from, for HEARTBEAT
   EXPECT_NEAR(b.answer_deadline_s, 0.15, 1e-12);  // 1.5 x 0.1 s
   EXPECT_NEAR(b.replan_lead_s, 0.16, 1e-12);      // keeps its 10 ms over the deadline
   EXPECT_TRUE(b.degraded);

@@ -127,7 +127,6 @@ class Arbiter {
   // The replan lead and answer deadline in use, and whether (and why) the computer is too slow
   // for the configured ones (replan_rules.hpp, latencyBudget).
   const LatencyBudget& latencyBudget() const { return budget_; }
-  const LatencyMonitor& latencies() const { return latency_; }
   // ODOMETRY received before, but older than stale_odometry_s at `now` (message clock).
   bool odometryStale(int64_t now) const;
 

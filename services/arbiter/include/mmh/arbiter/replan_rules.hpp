@@ -122,6 +122,8 @@ bool shouldStop(StopCause cause, const StopView& view, const ArbiterParams& para
 // Degraded when the budget is above the configured one or LOCAL_MAP arrives older (p99) than
 // max_map_age_s; `why` says which.
 struct LatencyBudget {
+  double answer_latency_p99_s = 0.0;  // what it was made from
+  double map_age_p99_s = 0.0;
   double replan_lead_s = 0.0;
   double answer_deadline_s = 0.0;
   bool degraded = false;
