@@ -115,32 +115,26 @@ constexpr double kUnknownTolerance_m = 0.1;
 
 }  // namespace
 
-double minOccupiedDistance(const VoxelGrid& grid, const Trajectory& traj, double limit_m) {
-  if (traj.empty()) return limit_m;
-  const double dt = sampleStep(traj);
-  double best = limit_m;
-  for (double t = 0.0;; t += dt) {
-    const double tc = std::min(t, traj.duration());
-    best = std::min(best, occupiedDistance(grid, traj.position(tc), best));
-    if (tc >= traj.duration()) break;
-  }
-  return best;
-}
-
 StopAssessment assessStop(const VoxelGrid& grid, const Trajectory& stop, double limit_m) {
   StopAssessment a;
-  a.clearance_m = minOccupiedDistance(grid, stop, limit_m);
+  a.clearance_m = limit_m;
   if (stop.empty()) return a;
+  // One walk for both: clearance at every sample, unknown length between samples.
   const double dt = sampleStep(stop);
   Eigen::Vector3d previous = stop.position(0.0);
-  for (double t = dt;; t += dt) {
+  for (double t = 0.0;; t += dt) {
     const double tc = std::min(t, stop.duration());
     const Eigen::Vector3d p = stop.position(tc);
+    a.clearance_m = std::min(a.clearance_m, occupiedDistance(grid, p, a.clearance_m));
     if (grid.atPoint(p) == Occupancy::kUnknown) a.unknown_m += (p - previous).norm();
     previous = p;
     if (tc >= stop.duration()) break;
   }
   return a;
+}
+
+double minOccupiedDistance(const VoxelGrid& grid, const Trajectory& traj, double limit_m) {
+  return assessStop(grid, traj, limit_m).clearance_m;
 }
 
 bool saferStop(const StopAssessment& a, const StopAssessment& b, double touch_m) {
