@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -121,6 +122,11 @@ void ServiceContext::reject(const std::string& counter, const std::string& reaso
     logWarn(service_ + ": " + reason + " [" + counter + " = " + std::to_string(counters_[counter]) +
             "]");
   }
+}
+
+int64_t ServiceContext::estimatedNow(int64_t wall_now_us) const {
+  if (clock_.now() == 0) return 0;
+  return clock_.now() + std::max<int64_t>(0, wall_now_us - clock_moved_wall_us_);
 }
 
 bool ServiceContext::admit(const std::string& channel, const std::string& source, int64_t utime,

@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
     mmh::ServiceContext ctx(*lcm, "mmh-arbiter", options.prefix);
     mmh::ArbiterNode node(ctx, params);
     mmh::logInfo(std::string("policy ") + mmh::arbiter::toString(params.policy));
-    return mmh::runNode(*lcm, {&ctx});
+    return mmh::runNode(*lcm, {&ctx}, [&node] { node.onIdle(mmh::wallTimeUs()); });
   } catch (const std::exception& e) {
     std::cerr << "mmh-arbiter: " << e.what() << "\n";
     return 1;

@@ -1,5 +1,7 @@
 #include "arbiter_node.hpp"
 
+#include <algorithm>
+
 #include "mmh/arbiter_status_t.hpp"
 #include "mmh/common/msg_convert.hpp"
 #include "mmh/plan_request_t.hpp"
@@ -44,7 +46,7 @@ void ArbiterNode::onGoal(const goal_t& msg) {
 
 void ArbiterNode::onOdometry(const odometry_t& msg) {
   arbiter_.onOdometry(stateOf(msg), msg.header.utime);
-  if (arbiter_.hasGoal() && map_.hasMap() && !arbiter_.odometryStale(ctx_.clock().now()) &&
+  if (arbiter_.hasGoal() && map_.hasMap() && !arbiter_.odometryStale(clockNow()) &&
       !arbiter_.latencyBudget().degraded) {
     ctx_.setState(heartbeat_t::STATE_OK, "");
   }
@@ -74,6 +76,21 @@ void ArbiterNode::onPlanResult(const plan_result_t& msg) {
   if (a.ok) a.trajectory = fromMsg(msg.trajectory);
   arbiter_.onAnswer(a, ctx_.clock().now());
   flush();
+}
+
+void ArbiterNode::onIdle(int64_t wall_now_us) {
+  const int64_t now = ctx_.estimatedNow(wall_now_us);
+  // While inputs flow, their own times drive the arbiter (the same decisions as in lock-step).
+  if (!arbiter_.hasGoal() || arbiter_.reached() || now <= arbiter_.now() ||
+      !arbiter_.odometryStale(now)) {
+    return;
+  }
+  arbiter_.onClock(now);
+  flush();
+}
+
+int64_t ArbiterNode::clockNow() const {
+  return std::max(ctx_.clock().now(), arbiter_.now());
 }
 
 void ArbiterNode::flush() {
@@ -161,7 +178,7 @@ void ArbiterNode::flush() {
                   milliseconds(arbiter_.latencyBudget().answer_latency_p99_s));
   ctx_.setCounter("map_age_p99_ms", milliseconds(arbiter_.latencyBudget().map_age_p99_s));
   ctx_.setCounter("answer_deadline_ms", milliseconds(arbiter_.latencyBudget().answer_deadline_s));
-  if (arbiter_.odometryStale(now)) {
+  if (arbiter_.odometryStale(clockNow())) {
     ctx_.setState(heartbeat_t::STATE_DEGRADED, "ODOMETRY is stale: not planning");
   } else if (arbiter_.latencyBudget().degraded && arbiter_.hasGoal() && map_.hasMap()) {
     // A steady text (the numbers change with every answer; they are in the counters above and

@@ -21,6 +21,10 @@ class ArbiterNode {
   ArbiterNode(ServiceContext& ctx, const arbiter::ArbiterParams& params);
 
   const arbiter::Arbiter& arbiter() const { return arbiter_; }
+  // Called often in real time (runNode's periodic): when the inputs fell silent long enough for
+  // ODOMETRY to be stale on the clock they would have now, the arbiter learns it at once instead
+  // of at the next input (the repeated GOAL comes once a second) and stops the vehicle.
+  void onIdle(int64_t wall_now_us);
 
  private:
   void onGoal(const goal_t& msg);
@@ -29,6 +33,8 @@ class ArbiterNode {
   void onLocalMap(const local_map_t& msg);
   void onPlanResult(const plan_result_t& msg);
   void flush();
+  // The newest time of the inputs, or of an idle tick that moved the arbiter's clock on.
+  int64_t clockNow() const;
 
   ServiceContext& ctx_;
   arbiter::Arbiter arbiter_;

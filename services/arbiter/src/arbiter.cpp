@@ -159,6 +159,11 @@ void Arbiter::onAnswer(const ModeAnswer& answer, int64_t now) {
   if (round_->answers.size() == round_->requests.size()) decide(now_, false);
 }
 
+void Arbiter::onClock(int64_t now) {
+  now_ = std::max(now_, now);
+  evaluate(now_);
+}
+
 Eigen::Vector3d Arbiter::vehiclePosition() const {
   return odometry_ ? odometry_->position : Eigen::Vector3d::Zero();
 }

@@ -510,6 +510,27 @@ TEST_F(ArbiterRules, StoppedOdometryDetectedFromTheRepeatedGoal) {
   EXPECT_EQ(a->counters().stale_odometry, 1);
 }
 
+TEST_F(ArbiterRules, StoppedOdometryDetectedByTheClockAlone) {
+  auto a = started(Policy::kMmh);
+  a->onAnswer(okAnswer(a->takeRequests().at(0)), at(0.001));
+  ASSERT_TRUE(a->takeCommit());
+  ASSERT_TRUE(fly(*a, 0.01, 1.0).empty());
+  a->takeDecisions();
+  // Every input falls silent; the real-time node's idle tick moves the clock on.
+  a->onClock(at(1.0 + 0.5 * params_.stale_odometry_s));
+  EXPECT_FALSE(a->takeCommit().has_value()) << "stopped before ODOMETRY was stale";
+  a->onClock(at(1.0 + params_.stale_odometry_s + 0.05));
+  auto stop = a->takeCommit();
+  ASSERT_TRUE(stop.has_value());
+  EXPECT_EQ(stop->mode, Mode::kStop);
+  EXPECT_EQ(a->now(), at(1.0 + params_.stale_odometry_s + 0.05));
+  EXPECT_EQ(a->counters().stale_odometry, 1);
+  // Further ticks of the same silence commit nothing more.
+  a->onClock(at(2.5));
+  EXPECT_FALSE(a->takeCommit().has_value());
+  EXPECT_TRUE(a->takeRequests().empty());
+}
+
 TEST_F(ArbiterRules, AnswerArrivingWhileOdometryIsStaleIsNotCommitted) {
   params_.replan_lead_s = 1.0;
   params_.answer_deadline_s = 1.0;

@@ -162,3 +162,28 @@ TEST(Runtime, AJumpFarAheadOfTheMessageClockIsRefused) {
   EXPECT_EQ(sub.counter("rejected_time_jump"), 1);
   EXPECT_EQ(sub.clock().now(), 3'000'000);
 }
+
+TEST(Runtime, EstimatedNowGoesOnWithTheWallClockWhileInputsAreSilent) {
+  auto lcm = mmh::openLcm("memq://");
+  mmh::ServiceContext pub(*lcm, "pub", "");
+  mmh::ServiceContext sub(*lcm, "sub", "");
+  Sink sink;
+  sub.subscribe(mmh::channels::kOdometry, &Sink::onOdom, &sink);
+  EXPECT_EQ(sub.estimatedNow(mmh::wallTimeUs()), 0);  // no input yet: no clock to go on from
+  const int64_t utime = 5'000'000;
+  const int64_t wall_before = mmh::wallTimeUs();
+  mmh::odometry_t o = odom(utime);
+  pub.publish(mmh::channels::kOdometry, o);
+  drain(*lcm);
+  const int64_t wall_after = mmh::wallTimeUs();
+  ASSERT_EQ(sink.odoms.size(), 1u);
+  // Two seconds of silence after the input moved the clock (at some wall time between the two
+  // readings): the estimate is the input's time plus the silence.
+  const int64_t silent_us = 2'000'000;
+  const int64_t estimate = sub.estimatedNow(wall_after + silent_us);
+  EXPECT_GE(estimate, utime + silent_us);
+  EXPECT_LE(estimate, utime + silent_us + (wall_after - wall_before));
+  EXPECT_EQ(sub.clock().now(), utime);  // the message clock itself does not move
+  // A wall clock behind the last input adds nothing.
+  EXPECT_EQ(sub.estimatedNow(wall_before - 1'000'000), utime);
+}

@@ -86,6 +86,10 @@ class ServiceContext {
   std::string channel(const std::string& base) const { return prefix_ + base; }
   lcm::LCM& lcm() { return lcm_; }
   MessageClock& clock() { return clock_; }
+  // The message clock moved on by the wall time that passed since an input last moved it: what
+  // the inputs' time would be now had they kept coming. Lets a real-time service notice that
+  // every input went silent (0 before the first input).
+  int64_t estimatedNow(int64_t wall_now_us) const;
 
   // Delivers decoded and validated messages of `base_channel` to owner->method(msg). Messages
   // that fail to decode, fail validation, go back in time or jump ahead of the message clock

@@ -106,6 +106,9 @@ class Arbiter {
   void onMapUpdated(const VoxelGrid& grid, int64_t map_seq, int64_t map_utime, int64_t now);
   void onOdometry(const KinematicState& state, int64_t now);
   void onAnswer(const ModeAnswer& answer, int64_t now);
+  // Time passed without any input (a real-time node's idle tick): what depends on the clock
+  // alone - stale ODOMETRY, a round's deadline - is decided at `now`.
+  void onClock(int64_t now);
 
   // --- outputs (the node takes them after every input) -----------------------------------
   std::vector<PlanRequestOut> takeRequests() { return std::exchange(requests_, {}); }
@@ -124,6 +127,7 @@ class Arbiter {
   bool pending() const { return round_.has_value(); }  // a planning round is in flight
   bool reached() const { return phase_ == Phase::kReached; }
   bool mapStale(int64_t now) const;
+  int64_t now() const { return now_; }  // newest time seen (inputs and onClock)
   // The replan lead and answer deadline in use, and whether (and why) the computer is too slow
   // for the configured ones (replan_rules.hpp, latencyBudget).
   const LatencyBudget& latencyBudget() const { return budget_; }
