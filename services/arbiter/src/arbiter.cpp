@@ -208,7 +208,8 @@ bool Arbiter::collisionThreat(int64_t now, double* eta_s) const {
   const auto hit = firstCollisionTime(*grid_, t, elapsed, t.duration());
   if (!hit) return false;
   *eta_s = *hit - elapsed;
-  return collisionNeedsRoundNow(*hit, elapsed, t.duration(), committed_.ends_at_goal, params_);
+  const double replan_point_s = replanPointS(t.duration(), repairedReplanPointS(), params_);
+  return collisionNeedsRoundNow(*hit, elapsed, replan_point_s, committed_.ends_at_goal, params_);
 }
 
 ReplanView Arbiter::replanView(int64_t now) const {
@@ -218,6 +219,7 @@ ReplanView Arbiter::replanView(int64_t now) const {
   v.committed_ends_at_goal = committed_.ends_at_goal;
   v.committed_elapsed_s = (now - committed_.start_utime) * kUs;
   v.committed_duration_s = committed_.trajectory.duration();
+  v.repaired_replan_point_s = repairedReplanPointS();
   v.collision_eta_s = collision_eta_s_;
   v.awareness_safe = awareness_ ? awareness_->safe : true;
   v.flown_since_last_round_m = (vehiclePosition() - last_round_position_).norm();
@@ -348,6 +350,7 @@ void Arbiter::startRound(Trigger trigger, const std::vector<Mode>& modes, int64_
     reference = committed.tail(start_s);
     round.target = committed.position(committed.duration());
     round.target_is_goal = committed_.ends_at_goal;
+    round.repairs = true;
   } else {
     const LocalTarget lt = chooseLocalTarget(grid_, round.start.state.position, goal_.position,
                                              params_.horizonDistance(), params_.geofence_min_m,
@@ -385,9 +388,22 @@ void Arbiter::enterPhase(Phase phase) {
   phase_ = phase;
 }
 
+std::optional<double> Arbiter::repairedReplanPointS() const {
+  if (!committed_.repaired_replan_utime) return std::nullopt;
+  return (*committed_.repaired_replan_utime - committed_.start_utime) * kUs;
+}
+
+int64_t Arbiter::committedReplanUtime() const {
+  const double point_s =
+      replanPointS(committed_.trajectory.duration(), repairedReplanPointS(), params_);
+  return committed_.start_utime + static_cast<int64_t>(point_s * 1e6);
+}
+
 void Arbiter::commit(const Trajectory& trajectory, int64_t start_utime, Mode mode,
-                     bool ends_at_goal) {
-  committed_ = Committed{trajectory, start_utime, mode, ends_at_goal};
+                     bool ends_at_goal, bool repairs) {
+  std::optional<int64_t> repaired;
+  if (repairs && hasCommitted()) repaired = committedReplanUtime();
+  committed_ = Committed{trajectory, start_utime, mode, ends_at_goal, repaired};
   CommitOut c;
   c.trajectory_id = next_trajectory_id_++;
   c.start_utime = start_utime;
@@ -466,7 +482,8 @@ void Arbiter::decide(int64_t now, bool by_deadline) {
   }
   if (best) {
     if (phase_ == Phase::kUnreachable) progress_.restart(now);  // a new chance to progress
-    commit(best->trajectory, round.start.start_utime, best->mode, round.target_is_goal);
+    commit(best->trajectory, round.start.start_utime, best->mode, round.target_is_goal,
+           round.repairs);
     enterPhase(Phase::kTracking);
     chain_.reset();
     d.outcome = Outcome::kCommitted;

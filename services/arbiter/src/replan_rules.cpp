@@ -15,6 +15,12 @@ bool usesLazyRules(Policy policy) {
   return policy == Policy::kMmh || policy == Policy::kMmhNoAwareness;
 }
 
+double replanPointS(double duration_s, std::optional<double> repaired_replan_point_s,
+                    const ArbiterParams& params) {
+  const double own_s = params.replan_fraction * duration_s;
+  return repaired_replan_point_s ? std::min(own_s, *repaired_replan_point_s) : own_s;
+}
+
 Trigger nextTrigger(const ReplanView& v, const ArbiterParams& params) {
   if (v.phase == Phase::kNewGoal)
     return v.has_committed ? Trigger::kGoalChanged : Trigger::kInitial;
@@ -32,7 +38,8 @@ Trigger nextTrigger(const ReplanView& v, const ArbiterParams& params) {
   if (usesLazyRules(params.policy)) {
     // Rule (1): past the halfway point, unless this trajectory already ends at the goal.
     if (!v.committed_ends_at_goal &&
-        v.committed_elapsed_s > params.replan_fraction * v.committed_duration_s) {
+        v.committed_elapsed_s >
+            replanPointS(v.committed_duration_s, v.repaired_replan_point_s, params)) {
       return Trigger::kHalfway;
     }
     return Trigger::kNone;
@@ -66,13 +73,12 @@ std::vector<Mode> modesFor(Trigger trigger, const ReplanView& v, const ArbiterPa
   return {Mode::kSom};
 }
 
-bool collisionNeedsRoundNow(double hit_s, double elapsed_s, double duration_s, bool ends_at_goal,
-                            const ArbiterParams& params) {
-  const double halfway_s = params.replan_fraction * duration_s;
+bool collisionNeedsRoundNow(double hit_s, double elapsed_s, double replan_point_s,
+                            bool ends_at_goal, const ArbiterParams& params) {
   const bool halfway_replan_pending =
-      usesLazyRules(params.policy) && !ends_at_goal && elapsed_s < halfway_s;
+      usesLazyRules(params.policy) && !ends_at_goal && elapsed_s < replan_point_s;
   return !(params.defer_far_collisions && halfway_replan_pending &&
-           hit_s > halfway_s + params.collision_margin_s);
+           hit_s > replan_point_s + params.collision_margin_s);
 }
 
 bool retryThrottled(Trigger trigger, bool braking_in_stop, bool stuck, double since_last_round_s,

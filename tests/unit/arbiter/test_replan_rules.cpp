@@ -49,6 +49,25 @@ TEST(ReplanRules, HalfwayRuleFiresPastTheReplanFractionOnly) {
   EXPECT_EQ(nextTrigger(at_goal, p), Trigger::kNone);
 }
 
+TEST(ReplanRules, ARepairKeepsTheReplanPointOfThePlanItRepairs) {
+  const ArbiterParams p = paramsFor(Policy::kMmh);
+  // A collision round re-planned the rest of a plan whose halfway point is 1.5 s into the new
+  // 10 s trajectory: rule (1) fires there, not at 5 s.
+  ReplanView v = tracking(1.6);
+  v.repaired_replan_point_s = 1.5;
+  EXPECT_EQ(replanPointS(10.0, 1.5, p), 1.5);
+  EXPECT_EQ(nextTrigger(v, p), Trigger::kHalfway);
+  v.committed_elapsed_s = 1.4;
+  EXPECT_EQ(nextTrigger(v, p), Trigger::kNone);
+  // A repair answered slower than the plan never moves the point later than its own halfway...
+  EXPECT_EQ(replanPointS(10.0, 7.0, p), 5.0);
+  // ...and a plan whose point has passed is replanned at once.
+  v.repaired_replan_point_s = -0.5;
+  v.committed_elapsed_s = 0.0;
+  EXPECT_EQ(nextTrigger(v, p), Trigger::kHalfway);
+  EXPECT_EQ(replanPointS(10.0, std::nullopt, p), 5.0);
+}
+
 TEST(ReplanRules, BaselinesReplanAfterAFixedDistance) {
   const ArbiterParams p = paramsFor(Policy::kEgo);
   ReplanView v = tracking(1.0);
@@ -114,13 +133,13 @@ TEST(ReplanRules, SingleModeBaselinesAskTheirModeForEveryTrigger) {
 TEST(ReplanRules, CollisionsBeyondTheHalfwayReplanWaitForIt) {
   ArbiterParams p = paramsFor(Policy::kMmh);
   // 10 s trajectory, 1 s flown: the halfway replan comes at 5 s.
-  EXPECT_TRUE(collisionNeedsRoundNow(5.0 + p.collision_margin_s - 0.1, 1.0, 10.0, false, p));
-  EXPECT_FALSE(collisionNeedsRoundNow(5.0 + p.collision_margin_s + 0.1, 1.0, 10.0, false, p));
-  EXPECT_TRUE(collisionNeedsRoundNow(9.0, 1.0, 10.0, true, p));   // no halfway replan comes
-  EXPECT_TRUE(collisionNeedsRoundNow(9.0, 5.5, 10.0, false, p));  // it came already
+  EXPECT_TRUE(collisionNeedsRoundNow(5.0 + p.collision_margin_s - 0.1, 1.0, 5.0, false, p));
+  EXPECT_FALSE(collisionNeedsRoundNow(5.0 + p.collision_margin_s + 0.1, 1.0, 5.0, false, p));
+  EXPECT_TRUE(collisionNeedsRoundNow(9.0, 1.0, 5.0, true, p));   // no halfway replan comes
+  EXPECT_TRUE(collisionNeedsRoundNow(9.0, 5.5, 5.0, false, p));  // it came already
   p.defer_far_collisions = false;
-  EXPECT_TRUE(collisionNeedsRoundNow(9.0, 1.0, 10.0, false, p));
-  EXPECT_TRUE(collisionNeedsRoundNow(9.0, 1.0, 10.0, false, paramsFor(Policy::kEgo)));
+  EXPECT_TRUE(collisionNeedsRoundNow(9.0, 1.0, 5.0, false, p));
+  EXPECT_TRUE(collisionNeedsRoundNow(9.0, 1.0, 5.0, false, paramsFor(Policy::kEgo)));
 }
 
 TEST(ReplanRules, RetriesWhileAStopBrakesWaitTheirPeriod) {

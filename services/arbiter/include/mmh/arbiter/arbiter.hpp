@@ -150,6 +150,8 @@ class Arbiter {
     int64_t start_utime = 0;
     Mode mode = Mode::kNone;
     bool ends_at_goal = false;
+    // A repair of the plan before it (replan_rules.hpp, replanPointS): that plan's replan point.
+    std::optional<int64_t> repaired_replan_utime;
   };
   // A planning round in flight: requests sent, answers collected until all came or the deadline.
   struct Round {
@@ -160,7 +162,8 @@ class Arbiter {
     bool target_is_goal = false;
     std::vector<PlanRequestOut> requests;
     std::vector<ModeAnswer> answers;
-    std::string note;  // why this round has an unusual target (a back-off)
+    std::string note;      // why this round has an unusual target (a back-off)
+    bool repairs = false;  // re-plans the rest of the committed trajectory, to its end
   };
 
   // The policy's inputs now (replan_rules.hpp).
@@ -175,7 +178,13 @@ class Arbiter {
   // No progress for give_up_s: hold (a stop if moving) and report the goal unreachable.
   void giveUp(int64_t now);
   void decide(int64_t now, bool by_deadline);
-  void commit(const Trajectory& trajectory, int64_t start_utime, Mode mode, bool ends_at_goal);
+  // `repairs`: the trajectory re-plans the committed one's rest to the same end (it keeps that
+  // plan's replan point).
+  void commit(const Trajectory& trajectory, int64_t start_utime, Mode mode, bool ends_at_goal,
+              bool repairs = false);
+  // When rule (1) replans the committed trajectory (replanPointS), on the message clock.
+  int64_t committedReplanUtime() const;
+  std::optional<double> repairedReplanPointS() const;
   // Commits a stopping trajectory; every caller has asked shouldStop() first.
   void commitStop(int64_t now, const std::string& why, Trigger trigger);
   void onStaleOdometry(int64_t now);

@@ -39,6 +39,9 @@ struct ReplanView {
   bool committed_ends_at_goal = false;
   double committed_elapsed_s = 0.0;  // now minus the committed trajectory's start
   double committed_duration_s = 0.0;
+  // When the committed trajectory repairs the plan before it (a collision round that kept its
+  // end): that plan's replan point, in seconds from the committed trajectory's start.
+  std::optional<double> repaired_replan_point_s;
   // Set when a newly mapped obstacle threatens the committed trajectory: the time from its
   // detection until the vehicle would reach it (the smallest, if seen again before a round).
   std::optional<double> collision_eta_s;
@@ -49,6 +52,13 @@ struct ReplanView {
   double since_last_round_s = 0;   // since the last round started
 };
 
+// Rule (1)'s replan point of a committed trajectory of duration_s, in seconds from its start:
+// replan_fraction of it - or, for a repair of the plan before it (same end), no later than that
+// plan's own point: repairs must not postpone the replan toward a new local target, or the
+// vehicle keeps braking toward the old plan's end.
+double replanPointS(double duration_s, std::optional<double> repaired_replan_point_s,
+                    const ArbiterParams& params);
+
 // Which round (if any) the arbiter starts now.
 Trigger nextTrigger(const ReplanView& view, const ArbiterParams& params);
 
@@ -56,10 +66,11 @@ Trigger nextTrigger(const ReplanView& view, const ArbiterParams& params);
 std::vector<Mode> modesFor(Trigger trigger, const ReplanView& view, const ArbiterParams& params);
 
 // Rule (2) of the lazy policy with its one exception: a collision at `hit_s` on the committed
-// trajectory (elapsed_s of it flown) needs a round now, unless the halfway replan comes first
-// and plans with this map before the vehicle gets there.
-bool collisionNeedsRoundNow(double hit_s, double elapsed_s, double duration_s, bool ends_at_goal,
-                            const ArbiterParams& params);
+// trajectory (elapsed_s of it flown) needs a round now, unless the halfway replan (at
+// replan_point_s, see replanPointS) comes first and plans with this map before the vehicle gets
+// there.
+bool collisionNeedsRoundNow(double hit_s, double elapsed_s, double replan_point_s,
+                            bool ends_at_goal, const ArbiterParams& params);
 
 // While a stopping trajectory still brakes, retries wait stop_retry_period_s between rounds:
 // plans from hard-braking states rarely fit the limits. While stuck, they wait
