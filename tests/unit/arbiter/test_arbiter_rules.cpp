@@ -194,6 +194,39 @@ TEST_F(ArbiterRules, NewObstacleOnTheCommittedTrajectoryAsksEamWithTheReference)
   EXPECT_TRUE(requests[0].target.isApprox(a->committed().position(a->committed().duration())));
 }
 
+TEST_F(ArbiterRules, ACollisionRepairKeepsTheHalfwayPointOfThePlanItRepairs) {
+  params_.emergency_horizon_s = 30.0;  // every collision is an emergency: EAM with the reference
+  auto a = started(Policy::kMmh);
+  auto r = a->takeRequests().at(0);
+  a->onAnswer(okAnswer(r), at(0.001));
+  auto plan = a->takeCommit();
+  ASSERT_TRUE(plan.has_value());
+  const int64_t plan_halfway =
+      plan->start_utime + static_cast<int64_t>(0.5 * plan->trajectory.duration() * 1e6);
+  ASSERT_TRUE(fly(*a, 0.01, 1.0).empty());
+  putPillar(9.0, 0.0, 0.4);
+  a->onMapUpdated(grid_, ++map_seq_, at(1.0), at(1.0));
+  auto repair_request = a->takeRequests();
+  ASSERT_EQ(repair_request.size(), 1u);
+  ASSERT_FALSE(repair_request[0].reference.empty());
+  // The pillar was a false return; the repair (same end, its own timing) is committed.
+  for (int64_t i = 0; i < grid_.numCells(); ++i) grid_.setLinear(i, mmh::Occupancy::kFree);
+  a->onAnswer(okAnswer(repair_request[0]), at(1.001));
+  auto repair = a->takeCommit();
+  ASSERT_TRUE(repair.has_value());
+  const int64_t own_halfway =
+      repair->start_utime + static_cast<int64_t>(0.5 * repair->trajectory.duration() * 1e6);
+  ASSERT_GT(own_halfway, plan_halfway + 200'000) << "the test needs a repair slower than the plan";
+  // The halfway replan comes at the repaired plan's halfway point, not the repair's own.
+  const double from_s = (repair->start_utime - kT0) * 1e-6;
+  auto next = fly(*a, from_s, (own_halfway - kT0) * 1e-6);
+  ASSERT_EQ(next.size(), 1u);
+  EXPECT_EQ(next[0].trigger, Trigger::kHalfway);
+  const int64_t asked_at = next[0].start_utime - static_cast<int64_t>(params_.replan_lead_s * 1e6);
+  EXPECT_GE(asked_at, plan_halfway);
+  EXPECT_LE(asked_at, plan_halfway + 20'000);
+}
+
 TEST_F(ArbiterRules, CollisionBeyondTheEmergencyHorizonAsksTheAwarenessMode) {
   params_.emergency_horizon_s = 0.5;
   auto a = started(Policy::kMmh, /*safe=*/false);
