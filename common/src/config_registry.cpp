@@ -308,6 +308,9 @@ std::vector<KeySpec> buildKeys() {
       real("arbiter.collision_margin_s", 0.0, 30.0, "1.5", "... beyond halfway plus this margin"),
       real("arbiter.replan_fraction", 0.05, 1.0, "0.5",
            "Lazy rule (1): replan once this share of the committed trajectory has been flown"),
+      real("arbiter.slow_plan_ratio", 1.0, 100.0, "2.0",
+           "A trajectory to the goal slower than this x the bound of its straight length is "
+           "replanned at its halfway point too"),
       real("arbiter.reference_min_remaining_s", 0.0, 10.0, "0.2",
            "EAM on a collision re-optimises the committed rest only when more than this is left"),
       real("arbiter.stop_min_speed_mps", 0.0, 1.0, "0.05",

@@ -15,6 +15,7 @@
 #include <map>
 #include <vector>
 
+#include "mmh/common/vehicle_limits.hpp"
 #include "mmh/som/planner.hpp"
 #include "scenarios.hpp"
 
@@ -80,10 +81,10 @@ void BM_Som(benchmark::State& state) {
         ++ok_with_path;
         const double d = out.trajectory.duration();
         const auto& pm = planner.params();
-        ratio_line.push_back(d / mmh::som::restToRestTimeBound((s.target - s.start).norm(),
-                                                               pm.max_vel_mps, pm.max_acc_mps2));
-        ratio_path.push_back(d / mmh::som::restToRestTimeBound(mmh::pathLength(out.path),
-                                                               pm.max_vel_mps, pm.max_acc_mps2));
+        ratio_line.push_back(
+            d / mmh::restToRestTime((s.target - s.start).norm(), pm.max_vel_mps, pm.max_acc_mps2));
+        ratio_path.push_back(
+            d / mmh::restToRestTime(mmh::pathLength(out.path), pm.max_vel_mps, pm.max_acc_mps2));
         evals.push_back(out.optimizer_evaluations);
         polys.push_back(out.corridor.polytopes.size());
       } else if (verbose) {

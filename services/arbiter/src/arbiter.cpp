@@ -8,6 +8,7 @@
 #include "mmh/common/collision_check.hpp"
 #include "mmh/common/geofence.hpp"
 #include "mmh/common/stopping_trajectory.hpp"
+#include "mmh/common/vehicle_limits.hpp"
 
 namespace mmh::arbiter {
 namespace {
@@ -219,6 +220,7 @@ ReplanView Arbiter::replanView(int64_t now) const {
   v.committed_ends_at_goal = committed_.ends_at_goal;
   v.committed_elapsed_s = (now - committed_.start_utime) * kUs;
   v.committed_duration_s = committed_.trajectory.duration();
+  v.committed_bound_s = committed_.bound_s;
   v.repaired_replan_point_s = repairedReplanPointS();
   v.collision_eta_s = collision_eta_s_;
   v.awareness_safe = awareness_ ? awareness_->safe : true;
@@ -403,7 +405,10 @@ void Arbiter::commit(const Trajectory& trajectory, int64_t start_utime, Mode mod
                      bool ends_at_goal, bool repairs) {
   std::optional<int64_t> repaired;
   if (repairs && hasCommitted()) repaired = committedReplanUtime();
-  committed_ = Committed{trajectory, start_utime, mode, ends_at_goal, repaired};
+  const double straight_m =
+      (trajectory.position(trajectory.duration()) - trajectory.position(0.0)).norm();
+  const double bound_s = restToRestTime(straight_m, params_.max_vel_mps, params_.max_acc_mps2);
+  committed_ = Committed{trajectory, start_utime, mode, ends_at_goal, repaired, bound_s};
   CommitOut c;
   c.trajectory_id = next_trajectory_id_++;
   c.start_utime = start_utime;

@@ -81,6 +81,7 @@ ArbiterParams loadArbiterParams(const Config& config) {
   p.defer_far_collisions = config.getBool("arbiter.defer_far_collisions");
   p.collision_margin_s = config.getDouble("arbiter.collision_margin_s");
   p.replan_fraction = config.getDouble("arbiter.replan_fraction");
+  p.slow_plan_ratio = config.getDouble("arbiter.slow_plan_ratio");
   p.reference_min_remaining_s = config.getDouble("arbiter.reference_min_remaining_s");
   p.stop_min_speed_mps = config.getDouble("arbiter.stop_min_speed_mps");
   p.stop_decision_margin_s = config.getDouble("arbiter.stop_decision_margin_s");

@@ -36,8 +36,11 @@ Trigger nextTrigger(const ReplanView& v, const ArbiterParams& params) {
   if (recovering) return can_retry ? Trigger::kRetry : Trigger::kNone;
   if (!v.has_committed) return Trigger::kInitial;
   if (usesLazyRules(params.policy)) {
-    // Rule (1): past the halfway point, unless this trajectory already ends at the goal.
-    if (!v.committed_ends_at_goal &&
+    // Rule (1): past the halfway point, unless this trajectory already ends at the goal at a
+    // pace near the bound (a crawl to the goal is replanned as well).
+    const bool slow = v.committed_bound_s > 0.0 &&
+                      v.committed_duration_s > params.slow_plan_ratio * v.committed_bound_s;
+    if ((!v.committed_ends_at_goal || slow) &&
         v.committed_elapsed_s >
             replanPointS(v.committed_duration_s, v.repaired_replan_point_s, params)) {
       return Trigger::kHalfway;

@@ -6,6 +6,7 @@
 
 #include "mmh/common/mission.hpp"
 #include "mmh/common/polynomial.hpp"
+#include "mmh/common/vehicle_limits.hpp"
 #include "mmh/sim/shortest_path.hpp"
 
 namespace mmh::sim {

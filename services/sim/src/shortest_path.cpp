@@ -343,10 +343,4 @@ VoxelGrid boundSearchGrid(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, 
   return VoxelGrid(res, origin, size);
 }
 
-double restToRestTime(double length, double vmax, double amax) {
-  if (length < 0.0) return -1.0;
-  if (length >= vmax * vmax / amax) return length / vmax + vmax / amax;
-  return 2.0 * std::sqrt(length / amax);
-}
-
 }  // namespace mmh::sim

@@ -8,12 +8,6 @@
 
 namespace mmh::som {
 
-double restToRestTimeBound(double length_m, double max_vel_mps, double max_acc_mps2) {
-  if (length_m >= max_vel_mps * max_vel_mps / max_acc_mps2)
-    return length_m / max_vel_mps + max_vel_mps / max_acc_mps2;
-  return 2.0 * std::sqrt(length_m / max_acc_mps2);
-}
-
 Planner::Planner(const SomParams& params)
     : params_(params), optimizer_(params.optimizer, params.max_vel_mps, params.max_acc_mps2) {}
 

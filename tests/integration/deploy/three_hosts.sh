@@ -10,10 +10,10 @@
 #     made for the test. Without systemd in there, the inventory says mmh_supervisor: script.
 # Checks: the play installs, configures and starts everything (ttl=1 across the bridge); the
 # installed services read /etc/mmh/mmh.yaml; status.yml sees every unit and HEARTBEAT; a rolling
-# restart of SOM during the flight keeps the vehicle safe (goal reached without collision,
-# trajectories committed after the restart); a second run of the play changes nothing; the
-# ground station's log holds every channel on the network (a reference recorder on the planner
-# host) and the core ones; stop.yml stops everything and status.yml then fails.
+# restart of SOM during a mission there and back keeps the vehicle safe (both waypoints reached
+# without collision, trajectories committed after the restart); a second run of the play changes
+# nothing; the ground station's log holds every channel on the network (a reference recorder on
+# the planner host) and the core ones; stop.yml stops everything and status.yml then fails.
 set -euo pipefail
 build=$1
 root=$(cd "$(dirname "$0")/../../.." && pwd)
@@ -136,7 +136,9 @@ all:
   hosts:
     vehicle: {ansible_host: 10.213.0.2}
     planner: {ansible_host: 10.213.0.3}
-    ground: {ansible_host: 10.213.0.4}
+    # There and back: the way back is a goal change that the planner must answer, so that
+    # trajectories come after SOM's restart however quickly the first leg is flown.
+    ground: {ansible_host: 10.213.0.4, mmh_service_args: {goal: "--waypoints 19.95,0,1.2;-19.95,0,1.2"}}
 YAML
 export ANSIBLE_CONFIG=$root/deploy/ansible/ansible.cfg ANSIBLE_HOME=$out/ansible \
   ANSIBLE_NOCOLOR=1 ANSIBLE_FORCE_COLOR=0
@@ -165,7 +167,7 @@ report=$!
 
 step "ansible-playbook restart.yml -e mmh_service=som (rolling restart during the flight)"
 # (A shorter HEARTBEAT listen than status.yml's, so that the restart falls well inside the
-# 17 s flight.)
+# flight: about 16 s there and 16 s back.)
 play restart restart.yml -e mmh_service=som -e mmh_heartbeat_listen_s=1.5 || { cat "$out/restart.txt"; fail "restart.yml"; }
 recap restart
 restarted=$(date +%s)

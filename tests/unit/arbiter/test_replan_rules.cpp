@@ -22,6 +22,7 @@ ReplanView tracking(double elapsed_s) {
   v.has_committed = true;
   v.committed_elapsed_s = elapsed_s;
   v.committed_duration_s = 10.0;
+  v.committed_bound_s = 8.0;  // its straight length flown at the limits: not a slow plan
   v.to_goal_m = 20.0;
   return v;
 }
@@ -47,6 +48,23 @@ TEST(ReplanRules, HalfwayRuleFiresPastTheReplanFractionOnly) {
   ReplanView at_goal = tracking(9.0);
   at_goal.committed_ends_at_goal = true;
   EXPECT_EQ(nextTrigger(at_goal, p), Trigger::kNone);
+}
+
+TEST(ReplanRules, ASlowTrajectoryToTheGoalIsReplannedAtItsHalfwayPoint) {
+  ArbiterParams p = paramsFor(Policy::kMmh);
+  ReplanView v = tracking(5.1);
+  v.committed_ends_at_goal = true;
+  EXPECT_EQ(nextTrigger(v, p), Trigger::kNone);          // 10 s against a bound of 8 s: on its way
+  v.committed_bound_s = 10.0 / p.slow_plan_ratio - 0.1;  // a crawl to the goal
+  EXPECT_EQ(nextTrigger(v, p), Trigger::kHalfway);
+  v.committed_elapsed_s = 4.9;
+  EXPECT_EQ(nextTrigger(v, p), Trigger::kNone);  // not before its halfway point
+  v.committed_elapsed_s = 5.1;
+  p.slow_plan_ratio = 3.0;
+  EXPECT_EQ(nextTrigger(v, p), Trigger::kNone);
+  // The baselines replan after a fixed distance, slow or not.
+  v.committed_bound_s = 1.0;
+  EXPECT_EQ(nextTrigger(v, paramsFor(Policy::kEgo)), Trigger::kNone);
 }
 
 TEST(ReplanRules, ARepairKeepsTheReplanPointOfThePlanItRepairs) {

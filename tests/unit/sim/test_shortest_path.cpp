@@ -1,4 +1,4 @@
-// Shortest paths among discs against analytic answers, and the time bound of docs/benchmark.md.
+// Shortest paths among discs against analytic answers.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,16 +12,6 @@
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 using mmh::sim::Disc;
-
-TEST(TimeBound, ObstacleFreeProtocolFlightIs14_8s) {
-  EXPECT_NEAR(mmh::sim::restToRestTime(39.9, 3.0, 2.0), 39.9 / 3.0 + 1.5, 1e-12);
-  EXPECT_NEAR(mmh::sim::restToRestTime(39.9, 3.0, 2.0), 14.8, 1e-12);
-  // Too short to reach v_max: accelerate half way, brake half way.
-  EXPECT_NEAR(mmh::sim::restToRestTime(2.0, 3.0, 2.0), 2.0 * std::sqrt(1.0), 1e-12);
-  // Continuous at the switch (length = v^2 / a = 4.5 m).
-  EXPECT_NEAR(mmh::sim::restToRestTime(4.5, 3.0, 2.0), 3.0, 1e-12);
-  EXPECT_LT(mmh::sim::restToRestTime(-1.0, 3.0, 2.0), 0.0);
-}
 
 TEST(ShortestPath, NoObstaclesIsTheStraightLine) {
   EXPECT_NEAR(mmh::sim::shortestPathAmongDiscs({}, Vector2d(-19.95, 0), Vector2d(19.95, 0)), 39.9,

@@ -1,6 +1,7 @@
 // The assembled simulator: rates of frames and status, determinism, options errors.
 #include <gtest/gtest.h>
 
+#include "mmh/common/vehicle_limits.hpp"
 #include "mmh/sim/shortest_path.hpp"
 #include "mmh/sim/simulator.hpp"
 #include "traj_helpers.hpp"
@@ -82,5 +83,5 @@ TEST(Simulator, FinishedOnArrivalOrCollision) {
   }
   EXPECT_TRUE(sim.metrics().reached);
   EXPECT_LT(steps, 200);
-  EXPECT_NEAR(sim.metrics().time_bound_s, mmh::sim::restToRestTime(2.0, 3.0, 2.0), 1e-12);
+  EXPECT_NEAR(sim.metrics().time_bound_s, mmh::restToRestTime(2.0, 3.0, 2.0), 1e-12);
 }

@@ -11,6 +11,7 @@
 
 #include "mmh/common/collision_check.hpp"
 #include "mmh/common/config.hpp"
+#include "mmh/common/vehicle_limits.hpp"
 #include "mmh/som/planner.hpp"
 #include "som_test_worlds.hpp"
 
@@ -51,10 +52,10 @@ void expectVerified(const som_test::World& w, const mmh::KinematicState& start,
   EXPECT_EQ(outside, 0);
   // Flight time is within reach of the rest-to-rest bound on the planned path (which ignores
   // the turns: the S-bend needs about 1.5 times it).
-  const double bound = mmh::som::restToRestTimeBound(mmh::pathLength(out.path), v_max, a_max);
+  const double bound = mmh::restToRestTime(mmh::pathLength(out.path), v_max, a_max);
   EXPECT_LT(t.duration(), 1.8 * bound);
   EXPECT_GT(t.duration(),
-            0.8 * mmh::som::restToRestTimeBound((w.target - start.position).norm(), v_max, a_max));
+            0.8 * mmh::restToRestTime((w.target - start.position).norm(), v_max, a_max));
   const auto& tm = out.timings;
   EXPECT_GT(tm.total.wall_us, 0.0);
   EXPECT_GT(tm.total.cpu_us, 0.0);

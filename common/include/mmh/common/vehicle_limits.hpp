@@ -14,4 +14,9 @@ struct VehicleLimits {
 // Throws ConfigError naming the key.
 VehicleLimits loadVehicleLimits(const Config& config);
 
+// Minimum time to travel `length_m` along a path from rest to rest with |v| <= max_vel_mps and
+// |a| <= max_acc_mps2: L / v + v / a when v_max is reached, 2 sqrt(L / a) otherwise. 39.9 m at
+// 3 m/s and 2 m/s^2 gives 14.8 s (docs/benchmark.md). A negative length gives a negative time.
+double restToRestTime(double length_m, double max_vel_mps, double max_acc_mps2);
+
 }  // namespace mmh

@@ -152,6 +152,7 @@ class Arbiter {
     bool ends_at_goal = false;
     // A repair of the plan before it (replan_rules.hpp, replanPointS): that plan's replan point.
     std::optional<int64_t> repaired_replan_utime;
+    double bound_s = 0.0;  // restToRestTime of its straight length
   };
   // A planning round in flight: requests sent, answers collected until all came or the deadline.
   struct Round {

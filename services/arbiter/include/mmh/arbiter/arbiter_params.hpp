@@ -50,6 +50,10 @@ struct ArbiterParams {
   // Lazy rule (1): replan once this share of the committed trajectory's duration has passed
   // (the paper's halfway point).
   double replan_fraction = 0.5;
+  // A trajectory that ends at the goal is not replanned at its halfway point, unless it takes
+  // longer than this x the rest-to-rest bound of its straight length (a crawl out of a tight
+  // spot would otherwise be flown to the end).
+  double slow_plan_ratio = 2.0;
   ParallelModes parallel_modes = ParallelModes::kNone;
   double inflation_m = 0.3;              // the planners' map inflation (local target clearance)
   double vehicle_radius_m = 0.15;        // airframe: a stop that brings it into an occupied cell

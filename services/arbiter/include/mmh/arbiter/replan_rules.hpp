@@ -12,6 +12,7 @@
 //                           (far ones wait for the halfway replan)     emergency_horizon_s, else
 //                                                                      as initial
 //   halfway                 replan_fraction of the committed flown     FPM if S, else SOM
+//                           (not on the way to the goal, unless slow)
 //   fixed                   fixed_replan_distance_m flown (baselines)  the policy's one mode
 // While stuck (no progress for stuck_after_s) retries come at most every stuck_retry_period_s and
 // one of them backs off to recently flown free space; after give_up_s the goal is unreachable:
@@ -39,6 +40,8 @@ struct ReplanView {
   bool committed_ends_at_goal = false;
   double committed_elapsed_s = 0.0;  // now minus the committed trajectory's start
   double committed_duration_s = 0.0;
+  // The rest-to-rest bound of the committed trajectory's straight length (restToRestTime).
+  double committed_bound_s = 0.0;
   // When the committed trajectory repairs the plan before it (a collision round that kept its
   // end): that plan's replan point, in seconds from the committed trajectory's start.
   std::optional<double> repaired_replan_point_s;

@@ -35,10 +35,4 @@ double gridShortestPath(const VoxelGrid& inflated_grid, const Eigen::Vector3d& a
 // at the first resolution that keeps it within ~8 M cells (the A* keeps 12 bytes per cell).
 VoxelGrid boundSearchGrid(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double grid_m);
 
-// Minimum time to travel `length` from rest to rest with |v| <= vmax and |a| <= amax along a
-// path: length/vmax + vmax/amax when the vehicle reaches vmax, 2 sqrt(length/amax) otherwise.
-// 39.9 m at 3 m/s and 2 m/s^2 gives 14.8 s (docs/benchmark.md). Negative length gives a negative
-// time.
-double restToRestTime(double length, double vmax, double amax);
-
 }  // namespace mmh::sim

@@ -68,8 +68,4 @@ class Planner {
 // The shortened A* path and the corridor of `out`, for the ground station (som.publish_debug).
 PlanDebug debugOf(const PlanOutput& out);
 
-// Lower bound on the duration of a rest-to-rest flight along a path of this length under the
-// limits (docs/benchmark.md): L / v + v / a, or 2 sqrt(L / a) when v_max is not reached.
-double restToRestTimeBound(double length_m, double max_vel_mps, double max_acc_mps2);
-
 }  // namespace mmh::som
