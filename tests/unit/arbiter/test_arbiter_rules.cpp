@@ -394,6 +394,35 @@ TEST_F(ArbiterRules, WithoutProgressRetriesSlowDownThenTheGoalIsUnreachableUntil
   EXPECT_EQ(a->phase(), Phase::kTracking);
 }
 
+TEST_F(ArbiterRules, AnUnreachableGoalResumesWhenANewMapOpensAWay) {
+  auto a = started(Policy::kMmh, false);
+  // Every mode fails until the vehicle, holding at rest, is declared unreachable.
+  double t = 0.0;
+  for (; a->phase() != Phase::kUnreachable && t < 60.0; t += 0.01) {
+    const int64_t now = at(t);
+    if (std::lround(t * 100) % 10 == 0) a->onMapUpdated(grid_, ++map_seq_, now, now);
+    a->onOdometry(rest(Vector3d(0, 0, 1.2)), now);
+    for (const auto& r : a->takeRequests()) a->onAnswer(failedAnswer(r), now);
+  }
+  ASSERT_EQ(a->phase(), Phase::kUnreachable);
+  a->takeDecisions();
+  // Newer maps open a way: the modes answer again. The next periodic retry commits, and the
+  // arbiter tracks the same goal again.
+  std::optional<CommitOut> resumed;
+  const double until = t + params_.unreachable_retry_s + 1.0;
+  for (; t < until && !resumed; t += 0.01) {
+    const int64_t now = at(t);
+    if (std::lround(t * 100) % 10 == 0) a->onMapUpdated(grid_, ++map_seq_, now, now);
+    a->onOdometry(rest(Vector3d(0, 0, 1.2)), now);
+    for (const auto& r : a->takeRequests()) a->onAnswer(okAnswer(r), now);
+    resumed = a->takeCommit();
+  }
+  ASSERT_TRUE(resumed.has_value()) << "no retry within unreachable_retry_s of the way opening";
+  EXPECT_NE(resumed->mode, Mode::kStop);
+  EXPECT_EQ(a->phase(), Phase::kTracking);
+  EXPECT_EQ(a->counters().unreachable_goals, 1);
+}
+
 TEST_F(ArbiterRules, NewGoalTriggersAReplan) {
   auto a = started(Policy::kMmh);
   a->onAnswer(okAnswer(a->takeRequests().at(0)), at(0.001));
