@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Worlds as files (lock-step, deterministic): a forest written with mmh-sim --export-world (and
 # mmh-stack --export-world, the same bytes) is flown back with mmh-stack --world FILE.pcd and
-# reaches the goal; a goal outside the file's bounds stops mmh-stack, mmh-bench and mmh-sim at
-# once with the coordinates and the bounds; --fit-geofence fits the fence to the file.
+# reaches the goal, and so is an ego-forest; a goal outside the file's bounds stops mmh-stack,
+# mmh-bench and mmh-sim at once with the coordinates and the bounds; --fit-geofence fits the
+# fence to the file.
 set -euo pipefail
 build=$1
 fail() { echo "FAIL: $*"; exit 1; }
@@ -19,6 +20,13 @@ json=$("$build/bin/mmh-stack" --log-level error --json --world "$dir/forest.pcd"
   --start=-8,0,1.2 --goal 8,0,1.2) || fail "the exported forest was not flown: $json"
 echo "$json"
 grep -q '"result": "reached"' <<< "$json" || fail "the exported forest: not reached"
+
+# EGO-Planner's forest (ragged pillars, rings) exported the same way is flown back too.
+"$build/bin/mmh-stack" --world ego-forest --size 20,20,3 --density 0.19 --seed 3 \
+  --start=-8,0,1.2 --goal 8,0,1.2 --export-world "$dir/ego.pcd" || fail "ego-forest export"
+json=$("$build/bin/mmh-stack" --log-level error --json --world "$dir/ego.pcd" \
+  --start=-8,0,1.2 --goal 8,0,1.2) || fail "the exported ego-forest was not flown: $json"
+grep -q '"result": "reached"' <<< "$json" || fail "the exported ego-forest: not reached"
 
 # Outside the world's bounds (x within the geofence): refused at once, naming both.
 check_refused() {
