@@ -311,6 +311,9 @@ std::vector<KeySpec> buildKeys() {
       real("arbiter.slow_plan_ratio", 1.0, 100.0, "2.0",
            "A trajectory to the goal slower than this x the bound of its straight length is "
            "replanned at its halfway point too"),
+      real("arbiter.slow_plan_replan_s", 0.05, 3600.0, "1.0",
+           "A trajectory slower than slow_plan_ratio x its bound is replanned no later than this "
+           "after its commit"),
       real("arbiter.reference_min_remaining_s", 0.0, 10.0, "0.2",
            "EAM on a collision re-optimises the committed rest only when more than this is left"),
       real("arbiter.stop_min_speed_mps", 0.0, 1.0, "0.05",

@@ -209,7 +209,8 @@ bool Arbiter::collisionThreat(int64_t now, double* eta_s) const {
   const auto hit = firstCollisionTime(*grid_, t, elapsed, t.duration());
   if (!hit) return false;
   *eta_s = *hit - elapsed;
-  const double replan_point_s = replanPointS(t.duration(), repairedReplanPointS(), params_);
+  const double replan_point_s =
+      replanPointS(t.duration(), committed_.bound_s, repairedReplanPointS(), params_);
   return collisionNeedsRoundNow(*hit, elapsed, replan_point_s, committed_.ends_at_goal, params_);
 }
 
@@ -396,8 +397,8 @@ std::optional<double> Arbiter::repairedReplanPointS() const {
 }
 
 int64_t Arbiter::committedReplanUtime() const {
-  const double point_s =
-      replanPointS(committed_.trajectory.duration(), repairedReplanPointS(), params_);
+  const double point_s = replanPointS(committed_.trajectory.duration(), committed_.bound_s,
+                                      repairedReplanPointS(), params_);
   return committed_.start_utime + static_cast<int64_t>(point_s * 1e6);
 }
 

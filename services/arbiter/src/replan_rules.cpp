@@ -15,9 +15,14 @@ bool usesLazyRules(Policy policy) {
   return policy == Policy::kMmh || policy == Policy::kMmhNoAwareness;
 }
 
-double replanPointS(double duration_s, std::optional<double> repaired_replan_point_s,
-                    const ArbiterParams& params) {
-  const double own_s = params.replan_fraction * duration_s;
+bool isSlowPlan(double duration_s, double bound_s, const ArbiterParams& params) {
+  return bound_s > 0.0 && duration_s > params.slow_plan_ratio * bound_s;
+}
+
+double replanPointS(double duration_s, double bound_s,
+                    std::optional<double> repaired_replan_point_s, const ArbiterParams& params) {
+  double own_s = params.replan_fraction * duration_s;
+  if (isSlowPlan(duration_s, bound_s, params)) own_s = std::min(own_s, params.slow_plan_replan_s);
   return repaired_replan_point_s ? std::min(own_s, *repaired_replan_point_s) : own_s;
 }
 
@@ -38,11 +43,10 @@ Trigger nextTrigger(const ReplanView& v, const ArbiterParams& params) {
   if (usesLazyRules(params.policy)) {
     // Rule (1): past the halfway point, unless this trajectory already ends at the goal at a
     // pace near the bound (a crawl to the goal is replanned as well).
-    const bool slow = v.committed_bound_s > 0.0 &&
-                      v.committed_duration_s > params.slow_plan_ratio * v.committed_bound_s;
+    const bool slow = isSlowPlan(v.committed_duration_s, v.committed_bound_s, params);
     if ((!v.committed_ends_at_goal || slow) &&
-        v.committed_elapsed_s >
-            replanPointS(v.committed_duration_s, v.repaired_replan_point_s, params)) {
+        v.committed_elapsed_s > replanPointS(v.committed_duration_s, v.committed_bound_s,
+                                             v.repaired_replan_point_s, params)) {
       return Trigger::kHalfway;
     }
     return Trigger::kNone;

@@ -50,15 +50,15 @@ TEST(ReplanRules, HalfwayRuleFiresPastTheReplanFractionOnly) {
   EXPECT_EQ(nextTrigger(at_goal, p), Trigger::kNone);
 }
 
-TEST(ReplanRules, ASlowTrajectoryToTheGoalIsReplannedAtItsHalfwayPoint) {
+TEST(ReplanRules, ASlowTrajectoryToTheGoalIsReplannedToo) {
   ArbiterParams p = paramsFor(Policy::kMmh);
   ReplanView v = tracking(5.1);
   v.committed_ends_at_goal = true;
   EXPECT_EQ(nextTrigger(v, p), Trigger::kNone);          // 10 s against a bound of 8 s: on its way
   v.committed_bound_s = 10.0 / p.slow_plan_ratio - 0.1;  // a crawl to the goal
   EXPECT_EQ(nextTrigger(v, p), Trigger::kHalfway);
-  v.committed_elapsed_s = 4.9;
-  EXPECT_EQ(nextTrigger(v, p), Trigger::kNone);  // not before its halfway point
+  v.committed_elapsed_s = p.slow_plan_replan_s - 0.05;
+  EXPECT_EQ(nextTrigger(v, p), Trigger::kNone);  // not before slow_plan_replan_s
   v.committed_elapsed_s = 5.1;
   p.slow_plan_ratio = 3.0;
   EXPECT_EQ(nextTrigger(v, p), Trigger::kNone);
@@ -67,23 +67,47 @@ TEST(ReplanRules, ASlowTrajectoryToTheGoalIsReplannedAtItsHalfwayPoint) {
   EXPECT_EQ(nextTrigger(v, paramsFor(Policy::kEgo)), Trigger::kNone);
 }
 
+TEST(ReplanRules, ACrawlIsReplannedSoonerThanItsHalfwayPoint) {
+  ArbiterParams p = paramsFor(Policy::kMmh);
+  p.slow_plan_replan_s = 1.0;
+  // A 10 s answer for a way whose straight length takes 2 s: a crawl (an EAM answer slowed down
+  // to clear its swerve), replanned 1 s after its commit, not after 5 s.
+  EXPECT_TRUE(isSlowPlan(10.0, 2.0, p));
+  EXPECT_FALSE(isSlowPlan(10.0, 8.0, p));
+  EXPECT_FALSE(isSlowPlan(10.0, 0.0, p));  // bound unknown
+  EXPECT_EQ(replanPointS(10.0, 2.0, std::nullopt, p), 1.0);
+  EXPECT_EQ(replanPointS(10.0, 8.0, std::nullopt, p), 5.0);
+  EXPECT_EQ(replanPointS(1.5, 0.5, std::nullopt, p), 0.75);  // its own halfway comes first
+  ReplanView v = tracking(1.1);
+  EXPECT_EQ(nextTrigger(v, p), Trigger::kNone);
+  v.committed_bound_s = 2.0;
+  EXPECT_EQ(nextTrigger(v, p), Trigger::kHalfway);
+  v.committed_elapsed_s = 0.9;
+  EXPECT_EQ(nextTrigger(v, p), Trigger::kNone);
+  // A collision 4 s ahead waits for the crawl's sooner replan (1 s + the 1.5 s margin come
+  // first); measured from the halfway point of 5 s it would need a round now.
+  EXPECT_TRUE(collisionNeedsRoundNow(4.0, 0.5, 5.0, false, p));
+  EXPECT_FALSE(
+      collisionNeedsRoundNow(4.0, 0.5, replanPointS(10.0, 2.0, std::nullopt, p), false, p));
+}
+
 TEST(ReplanRules, ARepairKeepsTheReplanPointOfThePlanItRepairs) {
   const ArbiterParams p = paramsFor(Policy::kMmh);
   // A collision round re-planned the rest of a plan whose halfway point is 1.5 s into the new
   // 10 s trajectory: rule (1) fires there, not at 5 s.
   ReplanView v = tracking(1.6);
   v.repaired_replan_point_s = 1.5;
-  EXPECT_EQ(replanPointS(10.0, 1.5, p), 1.5);
+  EXPECT_EQ(replanPointS(10.0, 0.0, 1.5, p), 1.5);
   EXPECT_EQ(nextTrigger(v, p), Trigger::kHalfway);
   v.committed_elapsed_s = 1.4;
   EXPECT_EQ(nextTrigger(v, p), Trigger::kNone);
   // A repair answered slower than the plan never moves the point later than its own halfway...
-  EXPECT_EQ(replanPointS(10.0, 7.0, p), 5.0);
+  EXPECT_EQ(replanPointS(10.0, 0.0, 7.0, p), 5.0);
   // ...and a plan whose point has passed is replanned at once.
   v.repaired_replan_point_s = -0.5;
   v.committed_elapsed_s = 0.0;
   EXPECT_EQ(nextTrigger(v, p), Trigger::kHalfway);
-  EXPECT_EQ(replanPointS(10.0, std::nullopt, p), 5.0);
+  EXPECT_EQ(replanPointS(10.0, 0.0, std::nullopt, p), 5.0);
 }
 
 TEST(ReplanRules, BaselinesReplanAfterAFixedDistance) {

@@ -54,6 +54,8 @@ struct ArbiterParams {
   // longer than this x the rest-to-rest bound of its straight length (a crawl out of a tight
   // spot would otherwise be flown to the end).
   double slow_plan_ratio = 2.0;
+  // ... and any such crawl is replanned no later than this after it was committed.
+  double slow_plan_replan_s = 1.0;
   ParallelModes parallel_modes = ParallelModes::kNone;
   double inflation_m = 0.3;              // the planners' map inflation (local target clearance)
   double vehicle_radius_m = 0.15;        // airframe: a stop that brings it into an occupied cell

@@ -55,12 +55,17 @@ struct ReplanView {
   double since_last_round_s = 0;   // since the last round started
 };
 
+// A committed trajectory slower than slow_plan_ratio x bound_s (the rest-to-rest time of its
+// straight length; 0: unknown) is a crawl.
+bool isSlowPlan(double duration_s, double bound_s, const ArbiterParams& params);
+
 // Rule (1)'s replan point of a committed trajectory of duration_s, in seconds from its start:
-// replan_fraction of it - or, for a repair of the plan before it (same end), no later than that
-// plan's own point: repairs must not postpone the replan toward a new local target, or the
-// vehicle keeps braking toward the old plan's end.
-double replanPointS(double duration_s, std::optional<double> repaired_replan_point_s,
-                    const ArbiterParams& params);
+// replan_fraction of it, for a crawl no later than slow_plan_replan_s (a newer map may open a
+// faster way) - and, for a repair of the plan before it (same end), no later than that plan's
+// own point: repairs must not postpone the replan toward a new local target, or the vehicle
+// keeps braking toward the old plan's end.
+double replanPointS(double duration_s, double bound_s,
+                    std::optional<double> repaired_replan_point_s, const ArbiterParams& params);
 
 // Which round (if any) the arbiter starts now.
 Trigger nextTrigger(const ReplanView& view, const ArbiterParams& params);
