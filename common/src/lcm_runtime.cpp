@@ -124,9 +124,15 @@ void ServiceContext::reject(const std::string& counter, const std::string& reaso
   }
 }
 
+void MessageClock::observe(int64_t utime) {
+  if (utime <= now_) return;
+  now_ = utime;
+  moved_wall_us_ = wallTimeUs();
+}
+
 int64_t ServiceContext::estimatedNow(int64_t wall_now_us) const {
   if (clock_.now() == 0) return 0;
-  return clock_.now() + std::max<int64_t>(0, wall_now_us - clock_moved_wall_us_);
+  return clock_.now() + std::max<int64_t>(0, wall_now_us - clock_.movedWallUs());
 }
 
 bool ServiceContext::admit(const std::string& channel, const std::string& source, int64_t utime,
@@ -136,13 +142,12 @@ bool ServiceContext::admit(const std::string& channel, const std::string& source
   // periods, paused replays) plus kMaxClockLeadUs (clock offsets between machines).
   const int64_t wall_now = wallTimeUs();
   if (clock_.now() > 0 &&
-      utime - clock_.now() > kMaxClockLeadUs + (wall_now - clock_moved_wall_us_)) {
+      utime - clock_.now() > kMaxClockLeadUs + (wall_now - clock_.movedWallUs())) {
     reject("rejected_time_jump", channel + " from " + source + ": utime jumps " +
                                      std::to_string((utime - clock_.now()) / 1000000) +
                                      " s ahead of the message clock");
     return false;
   }
-  if (utime > clock_.now()) clock_moved_wall_us_ = wall_now;
   auto& last = last_in_[channel + "|" + source];
   if (last.first > 0 && utime < last.first) {
     if (seq <= 1) {
@@ -172,6 +177,10 @@ bool ServiceContext::dropForLoss(const std::string& channel) {
   return true;
 }
 
+void ServiceContext::markRunning() {
+  if (state_ == heartbeat_t::STATE_STARTING) setState(heartbeat_t::STATE_OK, "");
+}
+
 void ServiceContext::setState(int8_t state, const std::string& detail) {
   if (state != state_ || detail != state_detail_) {
     if (state == heartbeat_t::STATE_DEGRADED)
@@ -183,15 +192,19 @@ void ServiceContext::setState(int8_t state, const std::string& detail) {
   state_detail_ = detail;
 }
 
-void ServiceContext::maybePublishHeartbeat(int64_t now_us) {
+void ServiceContext::maybePublishHeartbeat(int64_t now_us, std::optional<int64_t> stamp_utime) {
   if (last_heartbeat_us_ >= 0 && now_us - last_heartbeat_us_ < 1'000'000) return;
   last_heartbeat_us_ = now_us;
-  publishHeartbeat();
+  publishHeartbeat(stamp_utime);
 }
 
-void ServiceContext::publishHeartbeat() {
+void ServiceContext::publishHeartbeat(std::optional<int64_t> stamp_utime) {
   heartbeat_t hb{};
-  hb.header.utime = clock_.now();
+  // Never back in time (an input that arrives late pulls the estimate back): receivers would
+  // refuse it.
+  last_heartbeat_stamp_ =
+      std::max(last_heartbeat_stamp_, stamp_utime ? *stamp_utime : estimatedNow(wallTimeUs()));
+  hb.header.utime = last_heartbeat_stamp_;
   hb.service = service_;
   hb.host = host_;
   hb.pid = static_cast<int32_t>(getpid());
@@ -213,7 +226,7 @@ int runNode(lcm::LCM& lcm, const std::vector<ServiceContext*>& contexts,
             const std::function<void()>& periodic, int poll_ms) {
   installStopHandlers();
   for (ServiceContext* c : contexts) {
-    if (c->state() == heartbeat_t::STATE_STARTING) c->setState(heartbeat_t::STATE_OK, "");
+    c->markRunning();
     c->maybePublishHeartbeat(wallTimeUs());
   }
   while (!stopRequested()) {

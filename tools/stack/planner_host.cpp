@@ -46,8 +46,12 @@ void PlannerHost::drain() {
   }
 }
 
+void PlannerHost::markRunning() {
+  for (auto& ctx : contexts_) ctx->markRunning();
+}
+
 void PlannerHost::publishHeartbeats(int64_t now_us) {
-  for (auto& ctx : contexts_) ctx->maybePublishHeartbeat(now_us);
+  for (auto& ctx : contexts_) ctx->maybePublishHeartbeat(now_us, now_us);
 }
 
 }  // namespace mmh

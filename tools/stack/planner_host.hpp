@@ -48,6 +48,8 @@ class PlannerHost {
   void drain();
   // HEARTBEAT of every hosted service that is due on the given (simulated) clock.
   void publishHeartbeats(int64_t now_us);
+  // Every service (also those added later) reports OK instead of STARTING from now on.
+  void markRunning();
 
  private:
   PlannerHostOptions options_;

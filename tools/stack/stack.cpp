@@ -107,6 +107,7 @@ struct Vehicle {
     observer->subscribe(channels::kPlanResult, &Vehicle::onPlanResult, this);
     observer->subscribe(channels::kTrajectory, &Vehicle::onTrajectory, this);
     observer->subscribe(channels::kArbiterStatus, &Vehicle::onStatus, this);
+    host->markRunning();
   }
 
   void publishGoal() {

@@ -1,7 +1,9 @@
 // The LCM runtime over memq:// (in-process): decoding, validation, counters, prefixes, clock.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdlib>
+#include <thread>
 
 #include "mmh/common/lcm_runtime.hpp"
 #include "mmh/goal_t.hpp"
@@ -103,6 +105,18 @@ TEST(Runtime, HeartbeatCarriesCounters) {
   EXPECT_EQ(hb.beats[0].counter_values[0], 2);
 }
 
+TEST(Runtime, AServiceThatRunsReportsOkUnlessItSaidOtherwise) {
+  auto lcm = mmh::openLcm("memq://");
+  mmh::ServiceContext svc(*lcm, "mmh-test", "");
+  EXPECT_EQ(svc.state(), mmh::heartbeat_t::STATE_STARTING);
+  svc.markRunning();
+  EXPECT_EQ(svc.state(), mmh::heartbeat_t::STATE_OK);
+  mmh::ServiceContext waiting(*lcm, "mmh-waiting", "");
+  waiting.setState(mmh::heartbeat_t::STATE_DEGRADED, "waiting for LOCAL_MAP");
+  waiting.markRunning();
+  EXPECT_EQ(waiting.state(), mmh::heartbeat_t::STATE_DEGRADED);
+}
+
 TEST(Runtime, LossSwitchDropsAShare) {
   auto lcm = mmh::openLcm("memq://");
   mmh::ServiceContext pub(*lcm, "pub", "");
@@ -186,4 +200,42 @@ TEST(Runtime, EstimatedNowGoesOnWithTheWallClockWhileInputsAreSilent) {
   EXPECT_EQ(sub.clock().now(), utime);  // the message clock itself does not move
   // A wall clock behind the last input adds nothing.
   EXPECT_EQ(sub.estimatedNow(wall_before - 1'000'000), utime);
+}
+
+TEST(Runtime, AHeartbeatCarriesTheTimeItIsSentNotThatOfTheLastInput) {
+  auto lcm = mmh::openLcm("memq://");
+  mmh::ServiceContext pub(*lcm, "pub", "");
+  mmh::ServiceContext idle(*lcm, "mmh-idle", "");
+  mmh::ServiceContext mon(*lcm, "monitor", "");
+  Sink sink;
+  idle.subscribe(mmh::channels::kOdometry, &Sink::onOdom, &sink);
+  struct HbSink {
+    void on(const mmh::heartbeat_t& h) { beats.push_back(h); }
+    std::vector<mmh::heartbeat_t> beats;
+  } hb;
+  mon.subscribe(mmh::channels::kHeartbeat, &HbSink::on, &hb);
+  const int64_t utime = 5'000'000;
+  mmh::odometry_t o = odom(utime);
+  pub.publish(mmh::channels::kOdometry, o);
+  drain(*lcm);
+  const int64_t wall_input = mmh::wallTimeUs();
+  // Sent by a real-time service 50 ms or more after its last input...
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  idle.publishHeartbeat();
+  // ... and by a lock-step host at its simulated time.
+  idle.maybePublishHeartbeat(9'000'000, 9'000'000);
+  drain(*lcm);
+  // A simulator moves its own clock (observe, no input); a stamp older than the last is not sent.
+  mmh::ServiceContext sim(*lcm, "mmh-sim", "");
+  sim.clock().observe(7'000'000);
+  sim.publishHeartbeat();
+  idle.maybePublishHeartbeat(10'000'000, 8'000'000);
+  drain(*lcm);
+  ASSERT_EQ(hb.beats.size(), 4u);
+  EXPECT_GE(hb.beats[0].header.utime, utime + 50'000);
+  EXPECT_LE(hb.beats[0].header.utime, utime + (mmh::wallTimeUs() - wall_input) + 1'000'000);
+  EXPECT_EQ(hb.beats[1].header.utime, 9'000'000);
+  EXPECT_GE(hb.beats[2].header.utime, 7'000'000);
+  EXPECT_LE(hb.beats[2].header.utime, 8'000'000);
+  EXPECT_EQ(hb.beats[3].header.utime, 9'000'000);
 }

@@ -10,6 +10,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -52,17 +53,18 @@ inline constexpr const char* kPlanDebug = "PLAN_DEBUG";  // som/eam.publish_debu
 }  // namespace channels
 
 // Time of the newest message seen (microseconds of the message clock). Services never read the
-// wall clock for decisions, so live, replayed and lock-step runs behave the same.
+// wall clock for decisions, so live, replayed and lock-step runs behave the same. The wall time
+// at which the clock last moved is kept for ServiceContext::estimatedNow only.
 class MessageClock {
  public:
-  void observe(int64_t utime) {
-    if (utime > now_) now_ = utime;
-  }
+  void observe(int64_t utime);
   int64_t now() const { return now_; }
-  void reset() { now_ = 0; }
+  int64_t movedWallUs() const { return moved_wall_us_; }
+  void reset() { now_ = moved_wall_us_ = 0; }
 
  private:
   int64_t now_ = 0;
+  int64_t moved_wall_us_ = 0;
 };
 
 class ServiceContext;
@@ -121,9 +123,15 @@ class ServiceContext {
 
   void setState(int8_t state, const std::string& detail);
   int8_t state() const { return state_; }
-  // Publishes HEARTBEAT if at least 1 s passed (on the given clock) since the last one.
-  void maybePublishHeartbeat(int64_t now_us);
-  void publishHeartbeat();
+  // STARTING -> OK once the service handles its inputs (runNode's loop, or a lock-step host's
+  // first step); a state the service set itself (DEGRADED) stays.
+  void markRunning();
+  // Publishes HEARTBEAT if at least 1 s passed (on now_us's clock) since the last one. It is
+  // stamped stamp_utime, by default estimatedNow() on the wall clock: the time it is sent, also
+  // for a service whose inputs are rare (FPM between requests), so that a recorded flight's
+  // heartbeats keep time with the flight. A lock-step host stamps its simulated time.
+  void maybePublishHeartbeat(int64_t now_us, std::optional<int64_t> stamp_utime = std::nullopt);
+  void publishHeartbeat(std::optional<int64_t> stamp_utime = std::nullopt);
 
   // Test-only loss switch: drop this fraction of the messages received on base_channel.
   // Every context also reads $MMH_TEST_INCOMING_LOSS ("LOCAL_MAP=0.3[,CHANNEL=F...]", base channel
@@ -140,7 +148,6 @@ class ServiceContext {
   lcm::LCM& lcm_;
   std::string service_, prefix_, host_;
   MessageClock clock_;
-  int64_t clock_moved_wall_us_ = 0;  // wall time at which a received message last moved clock_
   std::map<std::string, int64_t> counters_;
   std::map<std::string, LogLimiter> limiters_;
   std::map<std::string, int64_t> publish_seq_;
@@ -150,6 +157,7 @@ class ServiceContext {
   std::vector<std::unique_ptr<detail::SubscriptionBase>> subscriptions_;
   std::vector<lcm::Subscription*> lcm_subscriptions_;
   int64_t msgs_in_ = 0, msgs_out_ = 0, msgs_rejected_ = 0;
+  int64_t last_heartbeat_stamp_ = 0;
   int8_t state_ = heartbeat_t::STATE_STARTING;
   std::string state_detail_;
   int64_t last_heartbeat_us_ = -1;

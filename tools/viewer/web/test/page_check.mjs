@@ -34,5 +34,8 @@ await runPageCheck(url, async (page) => {
     throw new Error(`no debug layer drawn: ${JSON.stringify(state)}`);
   const marks = await page.locator("#timeline .mark").count();
   if (marks !== Number(state.decisions)) throw new Error(`${marks} timeline marks for ${state.decisions} decisions`);
+  // Services that run report OK (or why not), never STARTING for the whole flight.
+  const starting = await page.locator('#health-rows tr[data-state="STARTING"]').count();
+  if (starting > 0) throw new Error(`${starting} services still STARTING at the end of the flight`);
   return `page ${JSON.stringify(state)}, ${marks} timeline marks, ${rows} live services`;
 });
