@@ -3,7 +3,9 @@
 // from LCM or, with --log FILE, from a recorded flight with a time slider.
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
+#include <system_error>
 #include <thread>
 
 #include "log_viewer.hpp"
@@ -17,6 +19,19 @@
 #endif
 
 namespace {
+
+// The page next to the executable as the Debian package installs it (/usr/bin/mmh-viewer,
+// /usr/share/mmh-planner/viewer-web), else the build's.
+std::string defaultWebRoot() {
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const std::filesystem::path installed =
+        exe.parent_path().parent_path() / "share" / "mmh-planner" / "viewer-web";
+    if (std::filesystem::exists(installed / "index.html", ec)) return installed.string();
+  }
+  return MMH_VIEWER_WEB_ROOT;
+}
 
 std::string urlOf(const std::string& address, uint16_t port) {
   const std::string host = address.find(':') == std::string::npos ? address : "[" + address + "]";
@@ -81,7 +96,7 @@ int serveLog(const mmh::NodeOptions& options, const std::string& log_path,
 int main(int argc, char** argv) {
   mmh::NodeOptions options;
   std::string bind = "127.0.0.1:8765";
-  std::string web_root = MMH_VIEWER_WEB_ROOT;
+  std::string web_root = defaultWebRoot();
   std::string log_path;
   mmh::ArgParser parser("mmh-viewer",
                         "Serves the 3D ground-station page and a Foxglove WebSocket stream "
@@ -90,7 +105,9 @@ int main(int argc, char** argv) {
                         "only.");
   mmh::addNodeOptions(parser, &options);
   parser.addString("--bind", &bind, "ADDR:PORT to serve HTTP and WebSocket on (127.0.0.1:8765)");
-  parser.addString("--web-root", &web_root, "directory of the built page (the build's viewer-web)");
+  parser.addString("--web-root", &web_root,
+                   "directory of the built page (the package's /usr/share/mmh-planner/viewer-web, "
+                   "else the build's viewer-web)");
   parser.addString("--log", &log_path,
                    "serve this recorded flight (lcm-logger or mmh-stack --log) with a time "
                    "slider instead of the live channels");

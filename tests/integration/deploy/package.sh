@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The Debian package and the Ansible files, without starting a deployment: cpack -G DEB builds
 # mmh-planner_*.deb with the executables in /usr/bin, the launch scripts, the type jar and the
-# lcm-spy wrapper, /etc/mmh/mmh.yaml as a conffile and the mmh@.service template; its Depends
+# lcm-spy wrapper, mmh-viewer's page (which the installed mmh-viewer serves without being told
+# where it is), /etc/mmh/mmh.yaml as a conffile and the mmh@.service template; its Depends
 # name Debian 12's runtime libraries and resolve on a Debian 12 without anything installed (apt
 # in simulation on an empty dpkg status); lintian reports no error; the unit passes
 # systemd-analyze verify and what it runs is the service itself in the foreground, stopping
@@ -34,6 +35,12 @@ for f in /usr/bin/mmh-mapping /usr/bin/mmh-awareness /usr/bin/mmh-fpm /usr/bin/m
   grep -qx "$f" "$out/files.txt" || fail "$f not in the package"
 done
 grep -q '/usr/bin/mmh-microbench' "$out/files.txt" && fail "development tools in the package"
+if [ -f "$build/viewer-web/index.html" ]; then
+  for f in /usr/bin/mmh-viewer /usr/share/mmh-planner/viewer-web/index.html \
+    /usr/share/mmh-planner/viewer-web/viewer.js /usr/share/mmh-planner/viewer-web/viewer.css; do
+    grep -qx "$f" "$out/files.txt" || fail "$f not in the package"
+  done
+fi
 dpkg-deb -e "$deb" "$out/control"
 [ "$(cat "$out/control/conffiles")" = /etc/mmh/mmh.yaml ] || fail "conffiles: $(cat "$out/control/conffiles")"
 depends=$(dpkg-deb -f "$deb" Depends)
@@ -57,6 +64,30 @@ fi
 lintian --tag-display-limit 0 "$deb" > "$out/lintian.txt" 2>&1 || true
 cat "$out/lintian.txt"
 grep -q '^E: ' "$out/lintian.txt" && fail "lintian reports errors"
+
+# The installed mmh-viewer serves the installed page (found next to its executable), not the
+# "page not built" notice (memq://: no network; an ephemeral port on 127.0.0.1).
+if [ -f "$build/viewer-web/index.html" ]; then
+  LCM_DEFAULT_URL=memq:// "$out/root/usr/bin/mmh-viewer" --bind 127.0.0.1:0 \
+    > "$out/viewer.log" 2>&1 &
+  viewer_pid=$!
+  url=""
+  for _ in $(seq 50); do
+    url=$(grep -o 'http://127.0.0.1:[0-9]*/' "$out/viewer.log" | head -1 || true)
+    [ -n "$url" ] && break
+    sleep 0.1
+  done
+  [ -n "$url" ] || { cat "$out/viewer.log"; fail "the installed mmh-viewer printed no URL"; }
+  python3 - "$url" "$out/root/usr/share/mmh-planner/viewer-web/index.html" <<'PY' ||
+import sys, urllib.request
+page = urllib.request.urlopen(sys.argv[1], timeout=10).read()
+assert page == open(sys.argv[2], "rb").read(), page[:200]
+PY
+    { kill $viewer_pid; fail "the installed mmh-viewer does not serve the installed page"; }
+  kill -TERM $viewer_pid
+  wait $viewer_pid || true
+  echo "the installed mmh-viewer serves /usr/share/mmh-planner/viewer-web at $url"
+fi
 
 # systemd: the unit verifies (problems in the unit come as FILE:LINE).
 if command -v systemd-analyze > /dev/null; then
