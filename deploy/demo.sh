@@ -47,7 +47,8 @@ if [ "${MMH_IN_NETNS:-0}" != 1 ]; then
   export MMH_IN_NETNS=1  # on the host network: run the rest here
 fi
 
-bin=$root/build/bin
+bin=${MMH_BIN_DIR:-$root/build/bin}  # (a test points it at its build)
+export MMH_BIN_DIR=$bin
 run=$out/run
 log=$out/flight.lcm
 goal=19.95,0,1.2
