@@ -35,9 +35,22 @@ for _ in $(seq 300); do
 done
 [ -n "$url" ] || fail "the demo printed no URL for the viewer"
 echo "demo: viewer at $url"
+# The viewer's CPU share while the demo flies (sampled until the page has seen the goal reached).
+viewer_pid=$(cat "$out/demo/run/mmh-viewer.pid")
+ticks() { awk '{ print $14 + $15 }' "/proc/$viewer_pid/stat"; }
+cpu_before=$(ticks)
+start_ns=$(date +%s%N)
 (cd "$web/test" && exec node page_check.mjs "$url" "$results/viewer-demo.png" 7 90 1) \
   > "$out/page.log" 2>&1 || { cat "$out/page.log"; fail "the page check on the demo failed"; }
+cpu_after=$(ticks)
+elapsed_ns=$(( $(date +%s%N) - start_ns ))
 cat "$out/page.log"
+cpu=$(awk -v t=$((cpu_after - cpu_before)) -v hz="$(getconf CLK_TCK)" -v ns="$elapsed_ns" \
+  'BEGIN { printf "%.1f", 100 * t / hz / (ns / 1e9) }')
+echo "mmh-viewer CPU during the demo: $cpu % of one core over $((elapsed_ns / 1000000)) ms (15 Hz maps, 100 Hz odometry, one page)" |
+  tee "$results/viewer-demo-cpu.txt"
+# A guard against a runaway loop, not a timing figure: the machine is shared.
+awk -v c="$cpu" 'BEGIN { exit !(c < 25) }' || fail "mmh-viewer used $cpu % of a core"
 status=0
 wait "$demo" || status=$?
 demo=""
