@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "mmh/common/collision_check.hpp"
 #include "mmh/common/narrow_space.hpp"
@@ -10,6 +11,7 @@
 #include "mmh/eam/bspline_optimizer.hpp"
 #include "mmh/eam/collision_pairs.hpp"
 #include "mmh/eam/initial_guess.hpp"
+#include "mmh/eam/time_warp.hpp"
 #include "mmh/eam/verification.hpp"
 
 namespace mmh::eam {
@@ -41,6 +43,11 @@ constexpr int kMaxFeasibilityRounds = 3;
 constexpr double kPathGuessRatio = 1.2;
 // A re-timing stalled when it removed less than this share of the excess ratio.
 constexpr double kRefineProgress = 0.5;
+// A re-timing slows the curve up to this long (old time) after the last stretch that broke the
+// limits, then returns to the old pace - unless that return would end beyond this share of the
+// curve, which is then slowed as a whole.
+constexpr double kRefineTailS = 0.5;
+constexpr double kLocalRefineShare = 0.9;
 
 PlanResult fail(PlanResult r, PlanStatus reason, std::string detail) {
   r.ok = false;
@@ -70,15 +77,17 @@ CostSettings costSettings(const EamParams& p) {
   return s;
 }
 
-// Slower by `ratio`, without a kink at the start. A uniform stretch of the curve would also
-// slow its start, which the request fixes; re-solving only the first control points then leaves
-// a jump in speed there that shows up as a large deceleration (and more stretching). Instead the
-// curve is re-timed through a warp tau(t) whose rate blends smoothly from 1 (start state kept:
-// tau' = 1, tau'' = 0 at t = 0) to 1 / ratio over a blend time long enough to shed the speed at
-// half of a_max, and the control points are re-sampled (same count, longer knot span). Anchor
-// pairs and the free mask follow their control points to the new times.
-void slowDown(UniformBspline& spline, PairSet& pairs, std::vector<char>& free_mask, double ratio,
-              const KinematicState& start, double max_acc_mps2) {
+// Slower by `ratio`, without a kink at the start, up to old time tau_end (then back to the old
+// pace; infinite: the whole rest). A uniform stretch of the curve would also slow its start,
+// which the request fixes; re-solving only the first control points then leaves a jump in speed
+// there that shows up as a large deceleration (and more stretching). Instead the curve is
+// re-timed through a TimeWarp whose first blend is long enough to shed the speed at half of
+// a_max (and so is the blend back), and the control points are re-sampled (same count, longer
+// knot span). Anchor pairs and the free mask follow their control points to the new times.
+// Returns the warp (new time -> old time).
+TimeWarp slowDown(UniformBspline& spline, PairSet& pairs, std::vector<char>& free_mask,
+                  double ratio, const KinematicState& start, double max_acc_mps2,
+                  double tau_end = std::numeric_limits<double>::infinity()) {
   // One slow-down at most triples the duration (more refines may follow): a larger factor asks
   // for a blend the knot span cannot follow.
   const double k = std::clamp(ratio * kRefineMargin, 1.0, 3.0);
@@ -89,30 +98,23 @@ void slowDown(UniformBspline& spline, PairSet& pairs, std::vector<char>& free_ma
   const int segments = old.numSegments();
   const double drop = 1.0 - 1.0 / k;
   // Blend time: tangential deceleration of the warp peaks at 1.5 |v0| drop / T_b.
-  double blend = std::max(2.0 * dt_old * k, 3.0 * start.velocity.norm() * drop / max_acc_mps2);
-  // tau at the end of the blend; keep the blend inside the curve.
-  auto tau_blend = [&](double b) { return b * (1.0 / k + 0.5 * drop); };
-  if (!std::isfinite(k) || tau_blend(blend) > 0.8 * t_old) {
+  const double blend =
+      std::max(2.0 * dt_old * k, 3.0 * start.velocity.norm() * drop / max_acc_mps2);
+  if (!std::isfinite(k) || blend * (1.0 / k + 0.5 * drop) > 0.8 * t_old) {
     // Too short a curve for a blend: the plain stretch (the start kink is small here).
     spline.setKnotSpan(dt_old * k);
     spline.controlPoints().leftCols(3) = UniformBspline::startControlPoints(start, dt_old * k);
-    return;
+    return TimeWarp(k, 0.0);
   }
-  const double tau_b = tau_blend(blend);
-  const double t_new = blend + k * (t_old - tau_b);
+  TimeWarp warp(k, blend);
+  if (std::isfinite(tau_end) && tau_end < t_old) {
+    const double v_end = old.evaluate(1, tau_end).norm();
+    const TimeWarp local(k, blend, tau_end,
+                         std::max(2.0 * dt_old * k, 3.0 * v_end * drop / max_acc_mps2));
+    if (local.tauRestored() < kLocalRefineShare * t_old) warp = local;
+  }
+  const double t_new = warp.newDuration(t_old);
   const double dt = t_new / segments;
-  // Warp and its first two derivatives (rate s = tau', s' = tau'').
-  auto warp = [&](double t, double* rate, double* rate_dot) {
-    if (t < blend) {
-      const double x = t / blend;
-      *rate = 1.0 / k + drop * (1.0 - 3.0 * x * x + 2.0 * x * x * x);
-      *rate_dot = drop * (-6.0 * x + 6.0 * x * x) / blend;
-      return t / k + drop * blend * (x - x * x * x + 0.5 * x * x * x * x);
-    }
-    *rate = 1.0 / k;
-    *rate_dot = 0.0;
-    return tau_b + (t - blend) / k;
-  };
   Eigen::Matrix3Xd q = old.controlPoints();
   PairSet new_pairs(pairs.size());
   std::vector<char> new_free(free_mask.size(), 0);
@@ -122,7 +124,7 @@ void slowDown(UniformBspline& spline, PairSet& pairs, std::vector<char>& free_ma
   for (int i = 3; i < segments; ++i) {
     const double t = (i - 1) * dt;
     double rate = 0.0, rate_dot = 0.0;
-    const double tau = std::min(warp(t, &rate, &rate_dot), t_old);
+    const double tau = std::min(warp.tau(t, &rate, &rate_dot), t_old);
     const Eigen::Vector3d acc =
         old.evaluate(2, tau) * rate * rate + old.evaluate(1, tau) * rate_dot;
     q.col(i) = old.evaluate(0, tau) - dt * dt / 6.0 * acc;
@@ -136,6 +138,23 @@ void slowDown(UniformBspline& spline, PairSet& pairs, std::vector<char>& free_ma
   spline = UniformBspline(q, dt);
   pairs = std::move(new_pairs);
   free_mask = std::move(new_free);
+  return warp;
+}
+
+// Time at which the curve last breaks v_max or a_max (its control velocities / accelerations
+// above the limits), at the end of the knot intervals they shape; 0 when nowhere.
+double lastLimitExcessTime(const UniformBspline& spline, const EamParams& p) {
+  const Eigen::Matrix3Xd& q = spline.controlPoints();
+  const double dt = spline.knotSpan();
+  int last = -1;
+  for (int i = 0; i + 1 < q.cols(); ++i) {
+    if ((q.col(i + 1) - q.col(i)).norm() / dt > p.max_vel_mps * kRefineAbove) last = i + 1;
+  }
+  for (int i = 0; i + 2 < q.cols(); ++i) {
+    const double a = (q.col(i + 2) - 2.0 * q.col(i + 1) + q.col(i)).norm() / (dt * dt);
+    if (a > p.max_acc_mps2 * kRefineAbove) last = std::max(last, i + 2);
+  }
+  return last < 0 ? 0.0 : std::min(spline.duration(), (last + 1) * dt);
 }
 
 // Integral of |jerk|^2 over pieces of degree <= 3 (jerk 6 c3, constant per piece); exact. The
@@ -222,6 +241,8 @@ struct Planner::Attempt {
   PairSet refine_base_pairs;
   std::vector<char> refine_base_free;
   double refine_total = 1.0;
+  TimeWarp refine_warp;         // the base's time at the current curve's times (last re-timing)
+  double refine_tau_end = 0.0;  // slowed up to this time of the base, the pace kept after it
   double ratio_before_refine = 1.0;  // limit ratio before the last re-timing
   double feasibility_boost = 1.0;    // extra factor on the feasibility weight
   int feasibility_rounds = 0;
@@ -369,6 +390,7 @@ void Planner::retimeFromBase(const PlanRequest& req, Attempt& at, PlanResult& r)
   const EamParams& P = params_;
   const double ratio = limitRatio(at.spline, P);
   at.ratio_before_refine = ratio;
+  const double excess_end_s = lastLimitExcessTime(at.spline, P);
   // Each slow-down sheds speed at the start within a blend sized for its own ratio; applied one
   // after another to the same curve, the blends add their decelerations up (a moving start then
   // ends far over a_max after a few of them). Re-time the curve from before the first of them
@@ -379,12 +401,18 @@ void Planner::retimeFromBase(const PlanRequest& req, Attempt& at, PlanResult& r)
     at.refine_base_pairs = at.pairs;
     at.refine_base_free = at.free_mask;
     at.refine_total = 1.0;
+    at.refine_warp = TimeWarp();
+    at.refine_tau_end = 0.0;
   }
+  double rate = 0.0, rate_dot = 0.0;
+  at.refine_tau_end = std::max(at.refine_tau_end,
+                               at.refine_warp.tau(excess_end_s, &rate, &rate_dot) + kRefineTailS);
   at.refine_total *= ratio;
   at.spline = at.refine_base;
   at.pairs = at.refine_base_pairs;
   at.free_mask = at.refine_base_free;
-  slowDown(at.spline, at.pairs, at.free_mask, at.refine_total, req.start, P.max_acc_mps2);
+  at.refine_warp = slowDown(at.spline, at.pairs, at.free_mask, at.refine_total, req.start,
+                            P.max_acc_mps2, at.refine_tau_end);
   ++at.refines;
   ++r.stats.refines;
   if (trace_) trace_("refine: knot span x " + std::to_string(at.refine_total * kRefineMargin));
