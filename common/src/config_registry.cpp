@@ -311,6 +311,9 @@ std::vector<KeySpec> buildKeys() {
       real("arbiter.slow_plan_ratio", 1.0, 100.0, "2.0",
            "A trajectory to the goal slower than this x the bound of its straight length is "
            "replanned at its halfway point too"),
+      real("arbiter.known_space_margin_m", 0.0, 10.0, "0.3",
+           "An answer must stay in mapped space within its stopping distance from the start plus "
+           "this"),
       real("arbiter.slow_plan_replan_s", 0.05, 3600.0, "1.0",
            "A trajectory slower than slow_plan_ratio x its bound is replanned no later than this "
            "after its commit"),

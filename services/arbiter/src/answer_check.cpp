@@ -1,6 +1,7 @@
 #include "mmh/arbiter/answer_check.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 #include "mmh/common/collision_check.hpp"
 #include "mmh/common/trajectory_verifier.hpp"
@@ -35,6 +36,29 @@ const char* arbiterWords(VerifyCheck check) {
 }
 
 }  // namespace
+
+double knownSpaceHorizonM(double start_speed_mps, const ArbiterParams& params) {
+  return start_speed_mps * start_speed_mps / (2.0 * params.max_acc_mps2) +
+         params.known_space_margin_m;
+}
+
+std::optional<double> firstUnknownWithin(const Trajectory& t, const VoxelGrid& grid,
+                                         double horizon_m, double step_s) {
+  const Eigen::Vector3d start = t.position(0.0);
+  const Eigen::Vector3i start_cell = grid.localIndexOf(start);
+  double travelled = 0.0;
+  Eigen::Vector3d previous = start;
+  for (double s = 0.0; s <= t.duration() && travelled <= horizon_m; s += step_s) {
+    const Eigen::Vector3d p = t.position(s);
+    travelled += (p - previous).norm();
+    previous = p;
+    const Eigen::Vector3i cell = grid.localIndexOf(p);
+    // The vehicle's own cell: where it is now, seen or not.
+    if (cell == start_cell || !grid.inWindow(cell)) continue;
+    if (grid.at(cell) == Occupancy::kUnknown) return s;
+  }
+  return std::nullopt;
+}
 
 bool checkAnswer(const Trajectory& t, int64_t answer_start_utime, const RequestedStart& requested,
                  const VoxelGrid* grid, const ArbiterParams& params, std::string* why) {
@@ -80,6 +104,15 @@ bool checkAnswer(const Trajectory& t, int64_t answer_start_utime, const Requeste
     o.escape_min_distance_m = escapeMinDistance(*grid, t.position(0.0), params.check_inflation_m);
   const VerifyResult v = verifyTrajectory(t, o);
   if (!v.ok) return fail(arbiterWords(v.failed));
+  // The stop from the start's speed must end in space the sensor has seen.
+  if (grid) {
+    const double horizon_m = knownSpaceHorizonM(start.velocity.norm(), params);
+    if (const auto at = firstUnknownWithin(t, *grid, horizon_m, params.check_step_s)) {
+      char text[128];
+      std::snprintf(text, sizeof(text), "enters unmapped space %.2f s from its start", *at);
+      return fail(text);
+    }
+  }
   return true;
 }
 

@@ -1,9 +1,13 @@
 // The arbiter's own check of a mode's answer before it may be committed: it trusts no mode. An
 // answer must take over the committed trajectory without a jump at the requested start, keep
 // the limits, stay in the geofence and collide with nothing in the arbiter's map (a start inside
-// the check margin may leave it, outwards and near the start only).
+// the check margin may leave it, outwards and near the start only) - and the stretch in which the
+// vehicle could stop from its start speed (plus a margin) must lie in space the sensor has seen:
+// planners treat unknown space as free, which is safe far ahead but not where the vehicle will be
+// before it could brake (sideways, backwards or down, where a forward camera never looked).
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "mmh/arbiter/arbiter_params.hpp"
@@ -17,6 +21,15 @@ struct RequestedStart {
   int64_t start_utime = 0;
   KinematicState state;
 };
+
+// The distance from the start within which an answer must stay in mapped space: the stopping
+// distance from start_speed_mps at max_acc_mps2 plus known_space_margin_m.
+double knownSpaceHorizonM(double start_speed_mps, const ArbiterParams& params);
+
+// Time of the first sample (every step_s) within horizon_m of path length from the start whose
+// cell is unknown in `grid` (the start's own cell and cells outside the window excepted).
+std::optional<double> firstUnknownWithin(const Trajectory& t, const VoxelGrid& grid,
+                                         double horizon_m, double step_s);
 
 // True when `answer` (starting at answer_start_utime) may be committed for `requested`;
 // otherwise false with the first failed check in *why. `grid` may be null (no map yet: no

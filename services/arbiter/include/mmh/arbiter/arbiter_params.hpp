@@ -56,6 +56,8 @@ struct ArbiterParams {
   double slow_plan_ratio = 2.0;
   // ... and any such crawl is replanned no later than this after it was committed.
   double slow_plan_replan_s = 1.0;
+  // An answer must stay in mapped space within its stopping distance from the start plus this.
+  double known_space_margin_m = 0.3;
   ParallelModes parallel_modes = ParallelModes::kNone;
   double inflation_m = 0.3;              // the planners' map inflation (local target clearance)
   double vehicle_radius_m = 0.15;        // airframe: a stop that brings it into an occupied cell

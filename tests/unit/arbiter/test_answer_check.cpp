@@ -1,0 +1,90 @@
+// The arbiter's answer check (answer_check.hpp): the rule that the stretch in which the vehicle
+// could stop from its start speed lies in mapped space, on a hand-made grid.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "mmh/arbiter/answer_check.hpp"
+
+using namespace mmh;
+using namespace mmh::arbiter;
+
+namespace {
+
+// 10 x 4 x 3 m at 0.1 m, every cell known free; origin at (-1, -2, 0).
+VoxelGrid mappedFreeGrid() {
+  VoxelGrid g(0.1, Eigen::Vector3i(-10, -20, 0), Eigen::Vector3i(100, 40, 30));
+  for (int z = 0; z < 30; ++z)
+    for (int y = 0; y < 40; ++y)
+      for (int x = 0; x < 100; ++x) g.set(Eigen::Vector3i(x, y, z), Occupancy::kFree);
+  return g;
+}
+
+void markUnknownSlab(VoxelGrid& g, double x_lo, double x_hi) {
+  for (int z = 0; z < 30; ++z)
+    for (int y = 0; y < 40; ++y)
+      for (int x = 0; x < 100; ++x) {
+        const Eigen::Vector3i c(x, y, z);
+        const double cx = g.centerOfLocal(c).x();
+        if (cx >= x_lo && cx <= x_hi) g.set(c, Occupancy::kUnknown);
+      }
+}
+
+// Along +x from (0, 0, 1.2): speed v0 and acceleration a, for `duration` seconds.
+Trajectory straight(double v0, double a, double duration) {
+  Piece p;
+  p.duration = duration;
+  p.coeffs.col(0) = Eigen::Vector3d(0.0, 0.0, 1.2);
+  p.coeffs.col(1) = Eigen::Vector3d(v0, 0.0, 0.0);
+  p.coeffs.col(2) = Eigen::Vector3d(0.5 * a, 0.0, 0.0);
+  return Trajectory({p});
+}
+
+}  // namespace
+
+TEST(AnswerCheck, TheKnownSpaceHorizonIsTheStoppingDistancePlusTheMargin) {
+  ArbiterParams p;
+  p.max_acc_mps2 = 2.0;
+  p.known_space_margin_m = 0.3;
+  EXPECT_DOUBLE_EQ(knownSpaceHorizonM(0.0, p), 0.3);
+  EXPECT_DOUBLE_EQ(knownSpaceHorizonM(3.0, p), 9.0 / 4.0 + 0.3);
+}
+
+TEST(AnswerCheck, UnmappedSpaceWithinTheStopIsFoundAndBeyondItIsNot) {
+  VoxelGrid g = mappedFreeGrid();
+  const Trajectory from_rest = straight(0.0, 1.0, 3.0);  // 4.5 m
+  EXPECT_FALSE(firstUnknownWithin(from_rest, g, 0.3, 0.01));
+  markUnknownSlab(g, 0.2, 0.4);  // right ahead of the start
+  const auto at = firstUnknownWithin(from_rest, g, 0.3, 0.01);
+  ASSERT_TRUE(at);
+  EXPECT_NEAR(*at, std::sqrt(2.0 * 0.2), 0.02);  // x = t^2 / 2 reaches the slab at 0.2 m
+  // Farther than the horizon: space the sensor will see on the way.
+  VoxelGrid far = mappedFreeGrid();
+  markUnknownSlab(far, 2.0, 2.2);
+  EXPECT_FALSE(firstUnknownWithin(from_rest, far, 0.3, 0.01));
+  // At 3 m/s the stop needs 2.25 m: the same slab is within it.
+  EXPECT_TRUE(firstUnknownWithin(straight(3.0, 0.0, 2.0), far, 2.55, 0.01));
+  // The start's own cell does not count (the vehicle is there, seen or not).
+  VoxelGrid own = mappedFreeGrid();
+  own.set(own.localIndexOf(Eigen::Vector3d(0.0, 0.0, 1.2)), Occupancy::kUnknown);
+  EXPECT_FALSE(firstUnknownWithin(from_rest, own, 0.3, 0.01));
+}
+
+TEST(AnswerCheck, AnAnswerWhoseStopWouldEndInUnmappedSpaceIsRefused) {
+  ArbiterParams p;
+  p.geofence_min_m = Eigen::Vector3d(-5.0, -5.0, 0.3);
+  p.geofence_max_m = Eigen::Vector3d(10.0, 5.0, 2.7);
+  RequestedStart requested;
+  requested.start_utime = 1'000'000;
+  requested.state.position = Eigen::Vector3d(0.0, 0.0, 1.2);
+  requested.state.acceleration = Eigen::Vector3d(1.0, 0.0, 0.0);
+  const Trajectory answer = straight(0.0, 1.0, 2.0);
+  VoxelGrid g = mappedFreeGrid();
+  std::string why;
+  EXPECT_TRUE(checkAnswer(answer, requested.start_utime, requested, &g, p, &why)) << why;
+  markUnknownSlab(g, 0.2, 0.4);
+  EXPECT_FALSE(checkAnswer(answer, requested.start_utime, requested, &g, p, &why));
+  EXPECT_NE(why.find("enters unmapped space"), std::string::npos) << why;
+  p.known_space_margin_m = 0.1;  // a stop from rest that ends before the slab
+  EXPECT_TRUE(checkAnswer(answer, requested.start_utime, requested, &g, p, &why)) << why;
+}
