@@ -6,6 +6,7 @@
 
 #include "mmh/common/config_registry.hpp"
 #include "mmh/common/replan_lead.hpp"
+#include "mmh/common/vehicle_limits.hpp"
 
 namespace mmh {
 namespace {
@@ -109,7 +110,7 @@ std::vector<ConfigConstraint> buildConstraints() {
                                    config.getDouble("arbiter.answer_deadline_s"));
                  const double latency = lead + config.getDouble("arbiter.stale_map_s");
                  const double range = config.getDouble("awareness.sensor_range_m");
-                 const double needed = v * v / (2.0 * a) + v * latency;
+                 const double needed = stoppingDistance(v, a) + v * latency;
                  if (needed <= range + 1e-9) return "";
                  std::ostringstream s;
                  s << "stopping from 'vehicle.max_vel_mps' = " << v

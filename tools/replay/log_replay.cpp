@@ -108,6 +108,7 @@ ReplayResult replayLog(const ReplayOptions& options) {
     for (const RecordedEvent& e : batch)
       host.lcm().publish(e.channel, e.data.data(), static_cast<unsigned int>(e.data.size()));
     host.drain();
+    if (batch_utime >= 0) host.advanceClocks(batch_utime);
     batch.clear();
     ++result.steps;
   };

@@ -50,6 +50,10 @@ void PlannerHost::markRunning() {
   for (auto& ctx : contexts_) ctx->markRunning();
 }
 
+void PlannerHost::advanceClocks(int64_t now_us) {
+  for (auto& ctx : contexts_) ctx->clock().observe(now_us);
+}
+
 void PlannerHost::publishHeartbeats(int64_t now_us) {
   for (auto& ctx : contexts_) ctx->maybePublishHeartbeat(now_us, now_us);
 }

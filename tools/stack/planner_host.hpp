@@ -48,6 +48,11 @@ class PlannerHost {
   void drain();
   // HEARTBEAT of every hosted service that is due on the given (simulated) clock.
   void publishHeartbeats(int64_t now_us);
+  // In lock-step the host is the clock: every service's message clock moves on to now_us, also
+  // of a service whose inputs are rare (FPM). Otherwise its next input, many simulated seconds
+  // later but only a few on the wall clock, looks like a jump far ahead and is refused - more
+  // or less often depending on how fast the machine runs the steps.
+  void advanceClocks(int64_t now_us);
   // Every service (also those added later) reports OK instead of STARTING from now on.
   void markRunning();
 

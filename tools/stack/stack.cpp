@@ -136,6 +136,7 @@ struct Vehicle {
       const KinematicState& s = sim->simulator().vehicle().state();
       if (mission->update(s.position, s.velocity) && !mission->finished()) publishGoal();
     }
+    host->advanceClocks(now);
     host->publishHeartbeats(now);
     if (now >= next_sample) {
       next_sample += 100'000;

@@ -5,6 +5,7 @@
 
 #include "mmh/common/collision_check.hpp"
 #include "mmh/common/trajectory_verifier.hpp"
+#include "mmh/common/vehicle_limits.hpp"
 
 namespace mmh::arbiter {
 namespace {
@@ -38,8 +39,7 @@ const char* arbiterWords(VerifyCheck check) {
 }  // namespace
 
 double knownSpaceHorizonM(double start_speed_mps, const ArbiterParams& params) {
-  return start_speed_mps * start_speed_mps / (2.0 * params.max_acc_mps2) +
-         params.known_space_margin_m;
+  return stoppingDistance(start_speed_mps, params.max_acc_mps2) + params.known_space_margin_m;
 }
 
 std::optional<double> firstUnknownWithin(const Trajectory& t, const VoxelGrid& grid,

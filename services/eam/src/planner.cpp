@@ -97,9 +97,11 @@ TimeWarp slowDown(UniformBspline& spline, PairSet& pairs, std::vector<char>& fre
   const int n = old.numControlPoints();
   const int segments = old.numSegments();
   const double drop = 1.0 - 1.0 / k;
-  // Blend time: tangential deceleration of the warp peaks at 1.5 |v0| drop / T_b.
-  const double blend =
-      std::max(2.0 * dt_old * k, 3.0 * start.velocity.norm() * drop / max_acc_mps2);
+  // Blend time for a speed v: the warp's tangential acceleration peaks at 1.5 |v| drop / T_b.
+  auto blendFor = [&](double v) {
+    return std::max(2.0 * dt_old * k, 3.0 * v * drop / max_acc_mps2);
+  };
+  const double blend = blendFor(start.velocity.norm());
   if (!std::isfinite(k) || blend * (1.0 / k + 0.5 * drop) > 0.8 * t_old) {
     // Too short a curve for a blend: the plain stretch (the start kink is small here).
     spline.setKnotSpan(dt_old * k);
@@ -108,9 +110,7 @@ TimeWarp slowDown(UniformBspline& spline, PairSet& pairs, std::vector<char>& fre
   }
   TimeWarp warp(k, blend);
   if (std::isfinite(tau_end) && tau_end < t_old) {
-    const double v_end = old.evaluate(1, tau_end).norm();
-    const TimeWarp local(k, blend, tau_end,
-                         std::max(2.0 * dt_old * k, 3.0 * v_end * drop / max_acc_mps2));
+    const TimeWarp local(k, blend, tau_end, blendFor(old.evaluate(1, tau_end).norm()));
     if (local.tauRestored() < kLocalRefineShare * t_old) warp = local;
   }
   const double t_new = warp.newDuration(t_old);
@@ -141,20 +141,27 @@ TimeWarp slowDown(UniformBspline& spline, PairSet& pairs, std::vector<char>& fre
   return warp;
 }
 
-// Time at which the curve last breaks v_max or a_max (its control velocities / accelerations
-// above the limits), at the end of the knot intervals they shape; 0 when nowhere.
-double lastLimitExcessTime(const UniformBspline& spline, const EamParams& p) {
+// Calls f(lo, hi) with the control points lo..hi of every control velocity (two points) or
+// control acceleration (three) above the limits.
+template <class F>
+void forEachLimitExcess(const UniformBspline& spline, const EamParams& p, F&& f) {
   const Eigen::Matrix3Xd& q = spline.controlPoints();
   const double dt = spline.knotSpan();
-  int last = -1;
   for (int i = 0; i + 1 < q.cols(); ++i) {
-    if ((q.col(i + 1) - q.col(i)).norm() / dt > p.max_vel_mps * kRefineAbove) last = i + 1;
+    if ((q.col(i + 1) - q.col(i)).norm() / dt > p.max_vel_mps * kRefineAbove) f(i, i + 1);
   }
   for (int i = 0; i + 2 < q.cols(); ++i) {
     const double a = (q.col(i + 2) - 2.0 * q.col(i + 1) + q.col(i)).norm() / (dt * dt);
-    if (a > p.max_acc_mps2 * kRefineAbove) last = std::max(last, i + 2);
+    if (a > p.max_acc_mps2 * kRefineAbove) f(i, i + 2);
   }
-  return last < 0 ? 0.0 : std::min(spline.duration(), (last + 1) * dt);
+}
+
+// Time at which the curve last breaks v_max or a_max, at the end of the knot intervals its
+// offending control points shape; 0 when nowhere.
+double lastLimitExcessTime(const UniformBspline& spline, const EamParams& p) {
+  int last = -1;
+  forEachLimitExcess(spline, p, [&](int, int hi) { last = std::max(last, hi); });
+  return last < 0 ? 0.0 : std::min(spline.duration(), (last + 1) * spline.knotSpan());
 }
 
 // Integral of |jerk|^2 over pieces of degree <= 3 (jerk 6 c3, constant per piece); exact. The
@@ -276,22 +283,13 @@ bool horizontalProblem(const PairSet& pairs, const Eigen::Matrix3Xd& q,
 // accelerations exceed the limits, and those within `margin` points of them. True if any.
 bool freeAroundLimitExcess(const UniformBspline& spline, const EamParams& p, int margin,
                            int first_free, int last_free, std::vector<char>& free_mask) {
-  const Eigen::Matrix3Xd& q = spline.controlPoints();
-  const double dt = spline.knotSpan();
   bool any = false;
-  auto mark = [&](int lo, int hi) {
+  forEachLimitExcess(spline, p, [&](int lo, int hi) {
     for (int i = std::max(first_free, lo - margin); i <= std::min(last_free, hi + margin); ++i) {
       free_mask[i] = 1;
       any = true;
     }
-  };
-  for (int i = 0; i + 1 < q.cols(); ++i) {
-    if ((q.col(i + 1) - q.col(i)).norm() / dt > p.max_vel_mps * kRefineAbove) mark(i, i + 1);
-  }
-  for (int i = 0; i + 2 < q.cols(); ++i) {
-    const double a = (q.col(i + 2) - 2.0 * q.col(i + 1) + q.col(i)).norm() / (dt * dt);
-    if (a > p.max_acc_mps2 * kRefineAbove) mark(i, i + 2);
-  }
+  });
   return any;
 }
 

@@ -42,23 +42,18 @@ double TimeWarp::tau(double t, double* rate, double* rate_dot) const {
 double TimeWarp::newDuration(double old_duration_s) const {
   if (old_duration_s >= tau_restored_)
     return hold_end_ + blend_back_ + (old_duration_s - tau_restored_);
-  if (old_duration_s <= tau_blend_) {
-    // Within the first blend: tau is increasing; bisection on [0, blend].
-    double lo = 0.0, hi = blend_;
-    for (int i = 0; i < 60; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      double r, rd;
-      (tau(mid, &r, &rd) < old_duration_s ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
-  }
+  if (old_duration_s <= tau_blend_) return inverseWithin(0.0, blend_, old_duration_s);
   if (old_duration_s <= tau_hold_end_ || !std::isfinite(hold_end_))
     return blend_ + k_ * (old_duration_s - tau_blend_);
-  double lo = hold_end_, hi = hold_end_ + blend_back_;
+  return inverseWithin(hold_end_, hold_end_ + blend_back_, old_duration_s);
+}
+
+double TimeWarp::inverseWithin(double lo, double hi, double old_time_s) const {
+  // tau increases: bisection (a blend's tau is a quartic, no closed-form inverse worth having).
   for (int i = 0; i < 60; ++i) {
     const double mid = 0.5 * (lo + hi);
-    double r, rd;
-    (tau(mid, &r, &rd) < old_duration_s ? lo : hi) = mid;
+    double rate, rate_dot;
+    (tau(mid, &rate, &rate_dot) < old_time_s ? lo : hi) = mid;
   }
   return 0.5 * (lo + hi);
 }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mmh/common/vehicle_limits.hpp"
+
 namespace mmh::fpm {
 
 void SpeedProfile::add(double duration, double accel) {
@@ -67,7 +69,7 @@ SpeedProfile SpeedProfile::plain(double length, double u0, double v_max, double 
     u0 = 0.0;
   }
   const double remaining = length - p.end_s_;
-  const double stop_dist = u0 * u0 / (2.0 * a);
+  const double stop_dist = stoppingDistance(u0, a);
   if (stop_dist >= remaining && caps.empty()) {
     // Too fast to stop in time: brake through the target and come back from beyond it.
     p.add(u0 / a, -a);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mmh/common/vehicle_limits.hpp"
+
 namespace mmh::som {
 
 PathCurve::PathCurve(const std::vector<Eigen::Vector3d>& points) {
@@ -113,7 +115,7 @@ Eigen::Vector3d stoppingPoint(const VoxelGrid& grid, const Eigen::Vector3d& p,
   const double speed = v.norm();
   if (speed < 0.3 || a_max <= 0.0) return p;
   const Eigen::Vector3d dir = v / speed;
-  for (double d = speed * speed / (2.0 * a_max); d > 0.1; d -= grid.resolution()) {
+  for (double d = stoppingDistance(speed, a_max); d > 0.1; d -= grid.resolution()) {
     if (segmentVisible(grid, p, p + d * dir, escape)) return p + d * dir;
   }
   return p;

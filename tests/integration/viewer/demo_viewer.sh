@@ -4,19 +4,11 @@
 # headless Chromium opens it while the real processes fly the mission and waits until the page
 # shows the seven services alive, a committed trajectory, map voxels, decisions and then "goal
 # reached"; none of them is still STARTING, no service refused a message for its time (heartbeats
-# of idle services and of the simulator keep time with the flight); the demo reports the goal reached, stops the viewer
-# with the other services and leaves its log and picture. Screenshot: BUILD/test-output/viewer-demo.png.
+# of idle services and of the simulator keep time with the flight); the demo reports the goal
+# reached, stops the viewer with the other services and leaves its log and picture. Also
+# measures the viewer's CPU share. Screenshot: BUILD/test-output/viewer-demo.png.
 set -euo pipefail
-build=$1
-root=$(cd "$(dirname "$0")/../../.." && pwd)
-web=$root/tools/viewer/web
-if [ ! -x "$web/node_modules/.bin/esbuild" ] || ! command -v node >/dev/null; then
-  echo "SKIP: the page's npm packages are not installed (deploy/setup.sh)"; exit 77
-fi
-if [ "${MMH_IN_NETNS:-0}" != 1 ]; then exec "$root/tests/integration/netns.sh" bash "$0" "$@"; fi
-out=$(mktemp -d)
-results=$build/test-output
-mkdir -p "$results"
+source "$(dirname "$0")/browser_test_env.sh"
 demo=""
 cleanup() { [ -n "$demo" ] && kill "$demo" 2>/dev/null; wait 2>/dev/null || true; }
 trap 'cleanup; rm -rf "$out"' EXIT
@@ -37,20 +29,17 @@ done
 echo "demo: viewer at $url"
 # The viewer's CPU share while the demo flies (sampled until the page has seen the goal reached).
 viewer_pid=$(cat "$out/demo/run/mmh-viewer.pid")
-ticks() { awk '{ print $14 + $15 }' "/proc/$viewer_pid/stat"; }
-cpu_before=$(ticks)
+cpu_before=$(cpu_ticks "$viewer_pid")
 start_ns=$(date +%s%N)
 (cd "$web/test" && exec node page_check.mjs "$url" "$results/viewer-demo.png" 7 90 1) \
   > "$out/page.log" 2>&1 || { cat "$out/page.log"; fail "the page check on the demo failed"; }
-cpu_after=$(ticks)
+cpu_after=$(cpu_ticks "$viewer_pid")
 elapsed_ns=$(( $(date +%s%N) - start_ns ))
 cat "$out/page.log"
-cpu=$(awk -v t=$((cpu_after - cpu_before)) -v hz="$(getconf CLK_TCK)" -v ns="$elapsed_ns" \
-  'BEGIN { printf "%.1f", 100 * t / hz / (ns / 1e9) }')
+cpu=$(cpu_share $((cpu_after - cpu_before)) "$elapsed_ns")
 echo "mmh-viewer CPU during the demo: $cpu % of one core over $((elapsed_ns / 1000000)) ms (15 Hz maps, 100 Hz odometry, one page)" |
   tee "$results/viewer-demo-cpu.txt"
-# A guard against a runaway loop, not a timing figure: the machine is shared.
-awk -v c="$cpu" 'BEGIN { exit !(c < 25) }' || fail "mmh-viewer used $cpu % of a core"
+cpu_guard "$cpu" || fail "mmh-viewer used $cpu % of a core"
 status=0
 wait "$demo" || status=$?
 demo=""

@@ -11,16 +11,7 @@
 # it with the time slider (log_page_check.mjs).
 # Screenshots and CPU report in BUILD/test-output/ (viewer.png, viewer-log.png, viewer-cpu.txt).
 set -euo pipefail
-build=$1
-root=$(cd "$(dirname "$0")/../../.." && pwd)
-web=$root/tools/viewer/web
-if [ ! -x "$web/node_modules/.bin/esbuild" ] || ! command -v node >/dev/null; then
-  echo "SKIP: the page's npm packages are not installed (deploy/setup.sh)"; exit 77
-fi
-if [ "${MMH_IN_NETNS:-0}" != 1 ]; then exec "$root/tests/integration/netns.sh" bash "$0" "$@"; fi
-out=$(mktemp -d)
-results=$build/test-output
-mkdir -p "$results"
+source "$(dirname "$0")/browser_test_env.sh"
 pids=()
 cleanup() { for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done; wait 2>/dev/null || true; }
 trap 'cleanup; rm -rf "$out"' EXIT
@@ -49,8 +40,7 @@ foxglove=$!
 pids+=("$foxglove")
 sleep 0.5
 
-ticks() { awk '{ print $14 + $15 }' "/proc/$viewer/stat"; }
-cpu_before=$(ticks)
+cpu_before=$(cpu_ticks "$viewer")
 start_ns=$(date +%s%N)
 lcm-logplayer "$out/flight.lcm" > "$out/logplayer.log" 2>&1 &
 player=$!
@@ -62,20 +52,18 @@ page=$!
 pids+=("$page")
 
 wait "$player" || fail "lcm-logplayer failed"
-cpu_after=$(ticks)
+cpu_after=$(cpu_ticks "$viewer")
 elapsed_ns=$(( $(date +%s%N) - start_ns ))
 wait "$foxglove" || { cat "$out/foxglove.log"; fail "the Foxglove client check failed"; }
 cat "$out/foxglove.log"
 wait "$page" || { cat "$out/page.log"; fail "the page check failed"; }
 cat "$out/page.log"
 
-hz=$(getconf CLK_TCK)
-cpu=$(awk -v t=$((cpu_after - cpu_before)) -v hz="$hz" -v ns="$elapsed_ns" \
-  'BEGIN { printf "%.1f", 100 * t / hz / (ns / 1e9) }')
+cpu=$(cpu_share $((cpu_after - cpu_before)) "$elapsed_ns")
 maps=$(python3 "$root/tests/integration/deploy/log_channels.py" "$out/flight.lcm" | awk '$1 == "LOCAL_MAP" { print $2 }')
 report="mmh-viewer CPU: $cpu % of one core over $((elapsed_ns / 1000000)) ms of playback ($maps LOCAL_MAP at 15 Hz, 100 Hz ODOMETRY, 2 clients)"
 echo "$report" | tee "$results/viewer-cpu.txt"
-awk -v c="$cpu" 'BEGIN { exit !(c < 25) }' || fail "mmh-viewer used $cpu % of a core"
+cpu_guard "$cpu" || fail "mmh-viewer used $cpu % of a core"
 
 colors=$(convert "$results/viewer.png" -format %k info:)
 [ "${colors:-0}" -gt 500 ] || fail "the screenshot looks blank ($colors colours)"

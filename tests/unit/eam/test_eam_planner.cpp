@@ -136,6 +136,17 @@ mmh::Trajectory cruiseThenBrake(const Vector3d& p0, double speed, double cruise_
   return mmh::Trajectory({cruise, brake});
 }
 
+// A request from (0, 0, 1.2) at `speed` along +x, whose reference cruises for cruise_s and
+// brakes to rest in brake_s (the committed trajectory of a vehicle at cruise speed).
+PlanRequest cruisingRequest(double speed, double cruise_s, double brake_s) {
+  PlanRequest req;
+  req.start.position = Vector3d(0.0, 0.0, 1.2);
+  req.start.velocity = Vector3d(speed, 0.0, 0.0);
+  req.reference = cruiseThenBrake(req.start.position, speed, cruise_s, brake_s);
+  req.target = req.reference.position(req.reference.duration());
+  return req;
+}
+
 TEST(EamPlanner, SlowingDownFromCruiseSpeedKeepsTheStartAndDoesNotCrawl) {
   // Cruising at v_max when a pillar appears on the committed trajectory: the detour needs more
   // than a_max at full speed, so time is re-allocated. The slow-down must keep the start state
@@ -149,11 +160,7 @@ TEST(EamPlanner, SlowingDownFromCruiseSpeedKeepsTheStartAndDoesNotCrawl) {
   // (the default) starts it early enough not to need the re-timing this test is about.
   p.window_margin_s = 0.5;
   mmh::eam::Planner planner(p);
-  PlanRequest req;
-  req.start.position = Vector3d(0.0, 0.0, 1.2);
-  req.start.velocity = Vector3d(p.max_vel_mps, 0.0, 0.0);
-  req.reference = cruiseThenBrake(req.start.position, p.max_vel_mps, 2.0, 3.0);
-  req.target = req.reference.position(req.reference.duration());
+  const PlanRequest req = cruisingRequest(p.max_vel_mps, 2.0, 3.0);
   ASSERT_GE(eam_test::firstBlockedTime(g, req.reference, true), 0.0);
   const PlanResult r = planner.plan(g, req);
   expectValid(g, req, r, p);
@@ -172,11 +179,7 @@ TEST(EamPlanner, ARetimedSwerveSlowsOnlyTheWayToItAndThePaceReturns) {
   auto p = params();
   p.window_margin_s = 0.5;  // a detour started late: it needs the re-timing
   mmh::eam::Planner planner(p);
-  PlanRequest req;
-  req.start.position = Vector3d(0.0, 0.0, 1.2);
-  req.start.velocity = Vector3d(p.max_vel_mps, 0.0, 0.0);
-  req.reference = cruiseThenBrake(req.start.position, p.max_vel_mps, 6.0, 3.0);
-  req.target = req.reference.position(req.reference.duration());
+  const PlanRequest req = cruisingRequest(p.max_vel_mps, 6.0, 3.0);
   const PlanResult r = planner.plan(g, req);
   expectValid(g, req, r, p);
   ASSERT_GE(r.stats.refines, 1);
@@ -207,11 +210,7 @@ TEST(EamPlanner, PillarCloseAheadAtCruiseSpeedStaysWithinTheLimits) {
                  ", r " + std::to_string(pillar.r));
     mmh::VoxelGrid g = eam_test::freeGrid();
     eam_test::addPillar(g, pillar.x, pillar.y, pillar.r);
-    PlanRequest req;
-    req.start.position = Vector3d(0.0, 0.0, 1.2);
-    req.start.velocity = Vector3d(p.max_vel_mps, 0.0, 0.0);
-    req.reference = cruiseThenBrake(req.start.position, p.max_vel_mps, 2.0, 3.0);
-    req.target = req.reference.position(req.reference.duration());
+    const PlanRequest req = cruisingRequest(p.max_vel_mps, 2.0, 3.0);
     ASSERT_GE(eam_test::firstBlockedTime(g, req.reference, true), 0.0);
     const PlanResult r = planner.plan(g, req);
     expectValid(g, req, r, p);

@@ -19,4 +19,9 @@ VehicleLimits loadVehicleLimits(const Config& config);
 // 3 m/s and 2 m/s^2 gives 14.8 s (docs/benchmark.md). A negative length gives a negative time.
 double restToRestTime(double length_m, double max_vel_mps, double max_acc_mps2);
 
+// Distance to brake from speed_mps to rest at max_acc_mps2: v^2 / (2 a).
+inline double stoppingDistance(double speed_mps, double max_acc_mps2) {
+  return speed_mps * speed_mps / (2.0 * max_acc_mps2);
+}
+
 }  // namespace mmh

@@ -25,6 +25,10 @@ class TimeWarp {
   double factor() const { return k_; }
 
  private:
+  // New time in [lo, hi] at which tau reaches old_time_s (a blend, where tau has no simple
+  // inverse).
+  double inverseWithin(double lo, double hi, double old_time_s) const;
+
   double k_ = 1.0, drop_ = 0.0;
   double blend_ = 0.0;                                         // new time of the first blend
   double hold_end_ = std::numeric_limits<double>::infinity();  // new time the blend back starts
