@@ -56,6 +56,9 @@ std::string stopCause(const std::string& detail) {
   if (contains(detail, "ODOMETRY is stale")) return "stale odometry";
   if (contains(detail, "no answer by the deadline")) return "deadline";
   if (contains(detail, "answer came after its start time")) return "late answer";
+  if (contains(detail, "no usable answer and unmapped space")) {
+    return "no usable answer + unmapped space ahead";
+  }
   if (contains(detail, "no usable answer")) return "no usable answer + danger ahead";
   return "other";
 }

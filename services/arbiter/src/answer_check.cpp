@@ -60,6 +60,17 @@ std::optional<double> firstUnknownWithin(const Trajectory& t, const VoxelGrid& g
   return std::nullopt;
 }
 
+std::optional<double> firstUnknownWithinReach(const Trajectory& t, double elapsed_s, double lead_s,
+                                              const VoxelGrid& grid, const ArbiterParams& params) {
+  if (t.empty() || elapsed_s >= t.duration()) return std::nullopt;
+  const double lead_end_s = std::min(t.duration(), elapsed_s + lead_s);
+  const double horizon_m = t.arcLength(elapsed_s, lead_end_s) +
+                           knownSpaceHorizonM(t.velocity(lead_end_s).norm(), params);
+  const auto at = firstUnknownWithin(t.tail(elapsed_s), grid, horizon_m, params.check_step_s);
+  if (!at) return std::nullopt;
+  return elapsed_s + *at;
+}
+
 bool checkAnswer(const Trajectory& t, int64_t answer_start_utime, const RequestedStart& requested,
                  const VoxelGrid* grid, const ArbiterParams& params, std::string* why) {
   const KinematicState& start = requested.state;

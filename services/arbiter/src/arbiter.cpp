@@ -119,9 +119,20 @@ void Arbiter::onMapUpdated(const VoxelGrid& grid, int64_t map_seq, int64_t map_u
   if (stopped_for_stale_map_ && !mapStale(now_)) stopped_for_stale_map_ = false;
   if (phase_ != Phase::kReached) relocateGoalIfBlocked();
   // Rule (2): a newly mapped obstacle on the rest of the committed trajectory.
+  // And its safety twin: unmapped space coming within the vehicle's reach, where a stop could
+  // no longer end in space the sensor has seen.
   double eta_s = 0.0;
-  if (hasCommitted() && !round_ && phase_ != Phase::kReached && collisionThreat(now_, &eta_s)) {
-    collision_eta_s_ = collision_eta_s_ ? std::min(*collision_eta_s_, eta_s) : eta_s;
+  if (hasCommitted() && !round_ && phase_ != Phase::kReached) {
+    std::optional<double> threat_s;
+    if (collisionThreat(now_, &eta_s)) {
+      threat_s = eta_s;
+      threat_note_.clear();
+    } else if ((threat_s = unmappedAhead(now_, params_.stop_decision_margin_s))) {
+      threat_note_ = "unmapped space on the committed trajectory within stopping reach; ";
+    }
+    if (threat_s) {
+      collision_eta_s_ = collision_eta_s_ ? std::min(*collision_eta_s_, *threat_s) : *threat_s;
+    }
   }
   evaluate(now_);
 }
@@ -199,7 +210,24 @@ bool Arbiter::stopCanWait(int64_t now) const {
   const Trajectory later_stop =
       chooseStoppingTrajectory(grid_, t, later_s, params_.max_acc_mps2, params_.max_vel_mps,
                                params_.check_inflation_m, stopTouchDistance());
-  return !firstCollisionTime(*grid_, later_stop, 0.0, later_stop.duration()).has_value();
+  if (firstCollisionTime(*grid_, later_stop, 0.0, later_stop.duration())) return false;
+  // Nor may waiting carry the stop farther into unmapped space than a stop now would go.
+  const double start_s = (now - committed_.start_utime) * kUs + budget_.replan_lead_s;
+  const Trajectory stop_now =
+      chooseStoppingTrajectory(grid_, t, start_s, params_.max_acc_mps2, params_.max_vel_mps,
+                               params_.check_inflation_m, stopTouchDistance());
+  const double limit_m = params_.check_inflation_m;
+  return assessStop(*grid_, later_stop, limit_m).unknown_m <=
+         assessStop(*grid_, stop_now, limit_m).unknown_m + grid_->resolution();
+}
+
+std::optional<double> Arbiter::unmappedAhead(int64_t now, double extra_s) const {
+  if (!grid_ || !hasCommitted() || committed_.mode == Mode::kStop) return std::nullopt;
+  const double elapsed = std::max(0.0, (now - committed_.start_utime) * kUs);
+  const auto at = firstUnknownWithinReach(committed_.trajectory, elapsed,
+                                          budget_.replan_lead_s + extra_s, *grid_, params_);
+  if (!at) return std::nullopt;
+  return *at - elapsed;
 }
 
 bool Arbiter::collisionThreat(int64_t now, double* eta_s) const {
@@ -277,7 +305,7 @@ void Arbiter::evaluate(int64_t now) {
     giveUp(now);
   }
   if (phase_ == Phase::kRecovering) {
-    stopIfNoTimeLeft(now, false, "no usable answer and the danger ahead is close", Trigger::kRetry);
+    stopIfNoTimeLeft(now, false, "it came close", Trigger::kRetry);
   }
   const ReplanView view = replanView(now);
   const Trigger trigger = nextTrigger(view, params_);
@@ -317,6 +345,8 @@ void Arbiter::startRound(Trigger trigger, const std::vector<Mode>& modes, int64_
   last_round_utime_ = now;
   Round round;
   round.trigger = trigger;
+  if (trigger == Trigger::kCollision) round.note = threat_note_;
+  threat_note_.clear();
   round.start.start_utime = now + static_cast<int64_t>(budget_.replan_lead_s * 1e6);
   round.deadline_utime = now + static_cast<int64_t>(budget_.answer_deadline_s * 1e6);
   round.start.state = stateAt(round.start.start_utime);
@@ -348,7 +378,7 @@ void Arbiter::startRound(Trigger trigger, const std::vector<Mode>& modes, int64_
     ++counters_.back_offs;
     round.note = "stuck for " +
                  std::to_string(static_cast<int>(progress_.secondsWithoutProgress(now))) +
-                 " s: backing off to recently flown free space; ";
+                 " s: backing off to recently flown free space; " + round.note;
   } else if (use_reference) {
     reference = committed.tail(start_s);
     round.target = committed.position(committed.duration());
@@ -509,18 +539,23 @@ void Arbiter::decide(int64_t now, bool by_deadline) {
   d.detail = notes;
   last_failure_notes_ = notes;
   pushDecision(d);
-  stopIfNoTimeLeft(now, by_deadline, "no usable answer and danger ahead: " + notes, round.trigger);
+  stopIfNoTimeLeft(now, by_deadline, notes, round.trigger);
 }
 
-void Arbiter::stopIfNoTimeLeft(int64_t now, bool by_deadline, const std::string& why,
+void Arbiter::stopIfNoTimeLeft(int64_t now, bool by_deadline, const std::string& notes,
                                Trigger trigger) {
   StopView stop = stopView(now);
-  stop.danger_ahead = collisionAhead(now);
+  const bool obstacle = collisionAhead(now);
+  stop.danger_ahead = obstacle || unmappedAhead(now, params_.stop_decision_margin_s).has_value();
   stop.fallback_exhausted = chain_.exhausted();
   stop.by_deadline = by_deadline;
   if (!stop.danger_ahead || stop.committed_is_stop) return;
   stop.stop_can_wait = stopCanWait(now);
-  if (shouldStop(StopCause::kNoUsableAnswer, stop, params_)) commitStop(now, why, trigger);
+  if (!shouldStop(StopCause::kNoUsableAnswer, stop, params_)) return;
+  commitStop(now,
+             std::string("no usable answer and ") +
+                 (obstacle ? "danger ahead: " : "unmapped space within stopping reach: ") + notes,
+             trigger);
 }
 
 void Arbiter::onStaleOdometry(int64_t now) {

@@ -88,3 +88,26 @@ TEST(AnswerCheck, AnAnswerWhoseStopWouldEndInUnmappedSpaceIsRefused) {
   p.known_space_margin_m = 0.1;  // a stop from rest that ends before the slab
   EXPECT_TRUE(checkAnswer(answer, requested.start_utime, requested, &g, p, &why)) << why;
 }
+
+TEST(AnswerCheck, TheCommittedTrajectorysReachIsTheLeadThenTheStopFromTheSpeedThere) {
+  ArbiterParams p;
+  p.max_acc_mps2 = 2.0;
+  p.known_space_margin_m = 0.3;
+  p.check_step_s = 0.01;
+  // 3 m/s along +x for 4 s; 1 s flown (x = 3 m). The reach: 0.5 s of lead (1.5 m), then the
+  // stop from 3 m/s (2.25 m) and the margin: up to x = 7.05 m.
+  const Trajectory cruise = straight(3.0, 0.0, 4.0);
+  VoxelGrid g = mappedFreeGrid();
+  EXPECT_FALSE(firstUnknownWithinReach(cruise, 1.0, 0.5, g, p));
+  markUnknownSlab(g, 6.9, 7.0);
+  const auto at = firstUnknownWithinReach(cruise, 1.0, 0.5, g, p);
+  ASSERT_TRUE(at);
+  EXPECT_NEAR(*at, 6.9 / 3.0, 0.02);  // time on the trajectory, from its start
+  // A shorter lead no longer reaches the slab; neither does the same lead from farther back.
+  EXPECT_FALSE(firstUnknownWithinReach(cruise, 1.0, 0.4, g, p));
+  EXPECT_FALSE(firstUnknownWithinReach(cruise, 0.9, 0.5, g, p));
+  // Unmapped space already passed is not ahead.
+  EXPECT_FALSE(firstUnknownWithinReach(cruise, 2.5, 0.5, g, p));
+  // Flown to its end: nothing left to reach.
+  EXPECT_FALSE(firstUnknownWithinReach(cruise, 4.0, 0.5, g, p));
+}

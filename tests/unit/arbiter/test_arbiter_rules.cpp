@@ -8,6 +8,7 @@
 #include "mmh/arbiter/local_target.hpp"
 #include "mmh/common/collision_check.hpp"
 #include "mmh/common/minco.hpp"
+#include "mmh/common/stopping_trajectory.hpp"
 
 using Eigen::Vector3d;
 using Eigen::Vector3i;
@@ -353,6 +354,46 @@ TEST_F(ArbiterRules, AFarDangerLetsTheStopWaitUntilItCannotWaitAnyLonger) {
   EXPECT_FALSE(mmh::firstCollisionTime(grid_, t, 0.0, t.duration()).has_value());
   EXPECT_LT(t.velocity(t.duration()).norm(), 1e-6);
   EXPECT_LT((t.position(t.duration()) - pillar).head<2>().norm(), 0.4 + 1.5);  // it came close
+}
+
+TEST_F(ArbiterRules, UnmappedSpaceWithinStoppingReachAsksARoundThenStopsBeforeIt) {
+  auto a = started(Policy::kMmh);
+  auto r = a->takeRequests().at(0);
+  a->onAnswer(okAnswer(r), at(0.001));
+  ASSERT_TRUE(a->takeCommit());
+  const double t1 = std::floor(0.45 * a->committed().duration() * 10.0) / 10.0;
+  ASSERT_TRUE(fly(*a, 0.01, t1).empty());
+  const KinematicState before = a->committed().state((at(t1) - a->committedStartUtime()) * 1e-6);
+  ASSERT_GT(before.velocity.norm(), 1.0);
+  // A slab the sensor never saw, across the way, 2.2 m ahead: within the reach of a vehicle
+  // this fast (lead and decision margin, then its stopping distance), though nothing is in it.
+  const double slab_x = before.position.x() + 2.2;
+  for (int64_t i = 0; i < grid_.numCells(); ++i) {
+    const double x = grid_.centerOfLocal(grid_.localFromLinear(i)).x();
+    if (x >= slab_x && x < slab_x + 0.5) grid_.setLinear(i, mmh::Occupancy::kUnknown);
+  }
+  a->onMapUpdated(grid_, ++map_seq_, at(t1), at(t1));
+  auto requests = a->takeRequests();
+  ASSERT_EQ(requests.size(), 1u);
+  EXPECT_EQ(requests[0].trigger, Trigger::kCollision);
+  // No mode answers: the fallback chain runs out and the vehicle stops short of the slab.
+  std::optional<CommitOut> stop;
+  std::string details;
+  for (double t = t1 + 0.01; t < t1 + 6.0 && !stop; t += 0.01) {
+    const int64_t now = at(t);
+    if (std::lround(t * 100) % 10 == 0) a->onMapUpdated(grid_, ++map_seq_, now, now);
+    a->onOdometry(a->committed().state((now - a->committedStartUtime()) * 1e-6), now);
+    a->takeRequests();
+    for (const auto& d : a->takeDecisions()) details += d.detail + "\n";
+    stop = a->takeCommit();
+  }
+  ASSERT_TRUE(stop.has_value());
+  EXPECT_EQ(stop->mode, Mode::kStop);
+  EXPECT_NE(details.find("unmapped space"), std::string::npos) << details;
+  const Trajectory& t = stop->trajectory;
+  EXPECT_LT(t.velocity(t.duration()).norm(), 1e-6);
+  EXPECT_LT(t.position(t.duration()).x(), slab_x);
+  EXPECT_EQ(mmh::assessStop(grid_, t, 1.0).unknown_m, 0.0);
 }
 
 TEST_F(ArbiterRules, WithoutProgressRetriesSlowDownThenTheGoalIsUnreachableUntilANewOne) {

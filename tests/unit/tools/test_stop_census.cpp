@@ -31,6 +31,9 @@ TEST(StopCause, NamesEachKindOfStop) {
             "stale odometry");
   EXPECT_EQ(stopCause("no usable answer and danger ahead: SOM failed (no path); "),
             "no usable answer + danger ahead");
+  EXPECT_EQ(stopCause("no usable answer and unmapped space within stopping reach: EAM rejected: "
+                      "enters unmapped space 0.40 s from its start; "),
+            "no usable answer + unmapped space ahead");
   EXPECT_EQ(stopCause("no usable answer and danger ahead: SOM failed (x); no answer by the "
                       "deadline; "),
             "deadline");

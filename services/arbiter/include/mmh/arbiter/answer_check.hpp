@@ -31,6 +31,13 @@ double knownSpaceHorizonM(double start_speed_mps, const ArbiterParams& params);
 std::optional<double> firstUnknownWithin(const Trajectory& t, const VoxelGrid& grid,
                                          double horizon_m, double step_s);
 
+// The same rule for the committed trajectory `t` while it is flown (`elapsed_s` of it flown):
+// if no plan replaced it, the vehicle would follow it for lead_s more and then brake along it.
+// Returns the time (on t) of the first unknown cell within that reach - the path of lead_s plus
+// knownSpaceHorizonM of the speed there - or nothing when the reach lies in mapped space.
+std::optional<double> firstUnknownWithinReach(const Trajectory& t, double elapsed_s, double lead_s,
+                                              const VoxelGrid& grid, const ArbiterParams& params);
+
 // True when `answer` (starting at answer_start_utime) may be committed for `requested`;
 // otherwise false with the first failed check in *why. `grid` may be null (no map yet: no
 // collision checks).

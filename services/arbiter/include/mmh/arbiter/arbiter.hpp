@@ -191,7 +191,8 @@ class Arbiter {
   void onStaleOdometry(int64_t now);
   // After a failed round, and while recovering: commits the stop for the danger ahead once it
   // cannot wait any longer (shouldStop, StopCause::kNoUsableAnswer).
-  void stopIfNoTimeLeft(int64_t now, bool by_deadline, const std::string& why, Trigger trigger);
+  // The decision's detail names the danger, then `notes` (what the modes said).
+  void stopIfNoTimeLeft(int64_t now, bool by_deadline, const std::string& notes, Trigger trigger);
   // A stop begun stop_decision_margin_s later would still end clear of the known obstacles.
   bool stopCanWait(int64_t now) const;
   // Sets the phase after a round's decision or a stop, unless a new goal came meanwhile (its
@@ -202,6 +203,10 @@ class Arbiter {
   double stopTouchDistance() const;
   // A collision ahead that needs a round now (collisionNeedsRoundNow); *eta_s until it is hit.
   bool collisionThreat(int64_t now, double* eta_s) const;
+  // Seconds until the committed trajectory enters unmapped space within the vehicle's reach
+  // (firstUnknownWithinReach) if the stop began extra_s after the current replan lead; nothing
+  // when the reach is mapped, or the committed trajectory is a stop (chosen as the safest).
+  std::optional<double> unmappedAhead(int64_t now, double extra_s) const;
   KinematicState stateAt(int64_t utime) const;
   Eigen::Vector3d vehiclePosition() const;
   void pushDecision(DecisionOut decision);
@@ -224,6 +229,7 @@ class Arbiter {
   Committed committed_;
   std::optional<Round> round_;
   std::optional<double> collision_eta_s_;  // a threatening collision awaits its round
+  std::string threat_note_;                // what the threat is, when not an obstacle
   FallbackChain chain_;
   ProgressMonitor progress_;
   LatencyMonitor latency_;

@@ -123,7 +123,9 @@ struct StopView {
   double odometry_speed_mps = 0.0;  // measured
   double planned_speed_mps = 0.0;   // on the committed trajectory now
   bool stopped_for_stale_map = false;
-  bool danger_ahead = false;        // the committed trajectory collides with the newest map
+  // The committed trajectory collides with the newest map, or enters unmapped space within the
+  // vehicle's reach (Arbiter::unmappedAhead, with stop_decision_margin_s).
+  bool danger_ahead = false;
   bool fallback_exhausted = false;  // every mode of the chain failed since the last commit
   bool by_deadline = false;         // the failed round was closed by its answer deadline
   // A stop begun stop_decision_margin_s from now would still come to rest clear of the known
