@@ -549,6 +549,10 @@ void Arbiter::stopIfNoTimeLeft(int64_t now, bool by_deadline, const std::string&
   stop.danger_ahead = obstacle || unmappedAhead(now, params_.stop_decision_margin_s).has_value();
   stop.fallback_exhausted = chain_.exhausted();
   stop.by_deadline = by_deadline;
+  const bool stuck =
+      stuckResponse(progress_.secondsWithoutProgress(now), params_) != StuckResponse::kNone;
+  stop.retry_held_back =
+      retryThrottled(Trigger::kRetry, false, stuck, (now - last_round_utime_) * kUs, params_);
   if (!stop.danger_ahead || stop.committed_is_stop) return;
   stop.stop_can_wait = stopCanWait(now);
   if (!shouldStop(StopCause::kNoUsableAnswer, stop, params_)) return;

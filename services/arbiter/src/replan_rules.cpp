@@ -130,11 +130,11 @@ bool shouldStop(StopCause cause, const StopView& v, const ArbiterParams& params)
       return v.has_committed && !v.committed_is_stop &&
              v.planned_speed_mps > params.stop_min_speed_mps;
     case StopCause::kNoUsableAnswer:
-      // Danger ahead and nothing left to try (or no time left): brake rather than fly into it -
-      // but only once braking cannot wait any longer, so that the modes keep their chance on
+      // Danger ahead and nothing left to try soon (or no time left): brake rather than fly into
+      // it - but only once braking cannot wait any longer, so that the modes keep their chance on
       // newer maps. A stop already under way brakes as hard as a new one would.
-      return v.danger_ahead && !v.committed_is_stop && (v.fallback_exhausted || v.by_deadline) &&
-             !v.stop_can_wait;
+      return v.danger_ahead && !v.committed_is_stop &&
+             (v.fallback_exhausted || v.by_deadline || v.retry_held_back) && !v.stop_can_wait;
     case StopCause::kUnreachable:
       return v.has_committed && !v.committed_is_stop &&
              v.planned_speed_mps > params.stop_min_speed_mps;

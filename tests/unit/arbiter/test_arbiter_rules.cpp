@@ -356,6 +356,33 @@ TEST_F(ArbiterRules, AFarDangerLetsTheStopWaitUntilItCannotWaitAnyLonger) {
   EXPECT_LT((t.position(t.duration()) - pillar).head<2>().norm(), 0.4 + 1.5);  // it came close
 }
 
+TEST_F(ArbiterRules, WhileStuckAFailedRoundWithTheDangerCloseStopsAtOnce) {
+  // Stuck from the start (no step toward the goal is ever large enough): retries come at most
+  // every stuck_retry_period_s, too late for a danger this close.
+  params_.progress_min_step_m = 1000.0;
+  params_.stuck_after_s = 0.5;
+  auto a = started(Policy::kMmh);
+  auto r = a->takeRequests().at(0);
+  a->onAnswer(okAnswer(r), at(0.001));
+  ASSERT_TRUE(a->takeCommit());
+  const double t1 = std::floor(0.45 * a->committed().duration() * 10.0) / 10.0;
+  ASSERT_TRUE(fly(*a, 0.01, t1).empty());
+  const KinematicState before = a->committed().state((at(t1) - a->committedStartUtime()) * 1e-6);
+  ASSERT_GT(before.velocity.norm(), 1.0);
+  putPillar(before.position.x() + 2.5, 0.0, 0.4);
+  a->onMapUpdated(grid_, ++map_seq_, at(t1), at(t1));
+  auto eam = a->takeRequests();
+  ASSERT_EQ(eam.size(), 1u);
+  a->takeDecisions();
+  a->onAnswer(failedAnswer(eam[0]), at(t1 + 0.005));
+  // SOM is left in the chain but held back for a second: the stop comes now.
+  auto commit = a->takeCommit();
+  ASSERT_TRUE(commit.has_value());
+  EXPECT_EQ(commit->mode, Mode::kStop);
+  const Trajectory& t = commit->trajectory;
+  EXPECT_FALSE(mmh::firstCollisionTime(grid_, t, 0.0, t.duration()).has_value());
+}
+
 TEST_F(ArbiterRules, UnmappedSpaceWithinStoppingReachAsksARoundThenStopsBeforeIt) {
   auto a = started(Policy::kMmh);
   auto r = a->takeRequests().at(0);

@@ -279,6 +279,9 @@ TEST(ReplanRules, EveryStopHasItsCondition) {
   failed.fallback_exhausted = false;
   failed.by_deadline = true;
   EXPECT_TRUE(shouldStop(StopCause::kNoUsableAnswer, failed, p));
+  failed.by_deadline = false;
+  failed.retry_held_back = true;  // stuck: the next mode would be asked too late
+  EXPECT_TRUE(shouldStop(StopCause::kNoUsableAnswer, failed, p));
   failed.committed_is_stop = true;  // already braking
   EXPECT_FALSE(shouldStop(StopCause::kNoUsableAnswer, failed, p));
   failed.committed_is_stop = false;

@@ -127,7 +127,10 @@ struct StopView {
   // vehicle's reach (Arbiter::unmappedAhead, with stop_decision_margin_s).
   bool danger_ahead = false;
   bool fallback_exhausted = false;  // every mode of the chain failed since the last commit
-  bool by_deadline = false;         // the failed round was closed by its answer deadline
+  // The next retry is held back (retryThrottled: stuck, or braking): the modes left in the chain
+  // will not be asked before the danger comes.
+  bool retry_held_back = false;
+  bool by_deadline = false;  // the failed round was closed by its answer deadline
   // A stop begun stop_decision_margin_s from now would still come to rest clear of the known
   // obstacles: the danger is not yet close, and new maps may still let a mode answer.
   bool stop_can_wait = false;
