@@ -198,6 +198,12 @@ double Arbiter::stopTouchDistance() const {
   return params_.vehicle_radius_m + (grid_ ? 0.5 * grid_->resolution() : 0.0);
 }
 
+Trajectory Arbiter::stopAlongCommitted(double t0_s) const {
+  return chooseStoppingTrajectory(grid_, committed_.trajectory, t0_s, params_.max_acc_mps2,
+                                  params_.max_vel_mps, params_.check_inflation_m,
+                                  stopTouchDistance());
+}
+
 bool Arbiter::stopCanWait(int64_t now) const {
   if (!grid_ || !hasCommitted() || params_.stop_decision_margin_s <= 0.0) return false;
   const Trajectory& t = committed_.trajectory;
@@ -207,15 +213,11 @@ bool Arbiter::stopCanWait(int64_t now) const {
   if (firstCollisionTime(*grid_, t, std::max(0.0, (now - committed_.start_utime) * kUs), later_s)) {
     return false;
   }
-  const Trajectory later_stop =
-      chooseStoppingTrajectory(grid_, t, later_s, params_.max_acc_mps2, params_.max_vel_mps,
-                               params_.check_inflation_m, stopTouchDistance());
+  const Trajectory later_stop = stopAlongCommitted(later_s);
   if (firstCollisionTime(*grid_, later_stop, 0.0, later_stop.duration())) return false;
   // Nor may waiting carry the stop farther into unmapped space than a stop now would go.
-  const double start_s = (now - committed_.start_utime) * kUs + budget_.replan_lead_s;
   const Trajectory stop_now =
-      chooseStoppingTrajectory(grid_, t, start_s, params_.max_acc_mps2, params_.max_vel_mps,
-                               params_.check_inflation_m, stopTouchDistance());
+      stopAlongCommitted((now - committed_.start_utime) * kUs + budget_.replan_lead_s);
   const double limit_m = params_.check_inflation_m;
   return assessStop(*grid_, later_stop, limit_m).unknown_m <=
          assessStop(*grid_, stop_now, limit_m).unknown_m + grid_->resolution();
@@ -453,10 +455,7 @@ void Arbiter::commitStop(int64_t now, const std::string& why, Trigger trigger) {
   const int64_t start = now + static_cast<int64_t>(budget_.replan_lead_s * 1e6);
   const Trajectory stop =
       hasCommitted()
-          ? chooseStoppingTrajectory(grid_, committed_.trajectory,
-                                     (start - committed_.start_utime) * kUs, params_.max_acc_mps2,
-                                     params_.max_vel_mps, params_.check_inflation_m,
-                                     stopTouchDistance())
+          ? stopAlongCommitted((start - committed_.start_utime) * kUs)
           : makeStoppingTrajectory(stateAt(start), params_.max_acc_mps2, params_.max_vel_mps);
   commit(stop, start, Mode::kStop, false);
   // Braking is not a plan: keep trying the modes, from the next map on.
@@ -549,11 +548,11 @@ void Arbiter::stopIfNoTimeLeft(int64_t now, bool by_deadline, const std::string&
   stop.danger_ahead = obstacle || unmappedAhead(now, params_.stop_decision_margin_s).has_value();
   stop.fallback_exhausted = chain_.exhausted();
   stop.by_deadline = by_deadline;
+  if (!stop.danger_ahead || stop.committed_is_stop) return;
   const bool stuck =
       stuckResponse(progress_.secondsWithoutProgress(now), params_) != StuckResponse::kNone;
   stop.retry_held_back =
       retryThrottled(Trigger::kRetry, false, stuck, (now - last_round_utime_) * kUs, params_);
-  if (!stop.danger_ahead || stop.committed_is_stop) return;
   stop.stop_can_wait = stopCanWait(now);
   if (!shouldStop(StopCause::kNoUsableAnswer, stop, params_)) return;
   commitStop(now,

@@ -94,6 +94,19 @@ class ArbiterRules : public ::testing::Test {
     return all;
   }
 
+  // Commits the first answer and flies it (fly) to just before its halfway point, where the
+  // vehicle is fast; returns that time in seconds and the committed state there in *state.
+  double flyToCruise(Arbiter& a, KinematicState* state) {
+    auto r = a.takeRequests().at(0);
+    a.onAnswer(okAnswer(r), at(0.001));
+    EXPECT_TRUE(a.takeCommit());
+    const double t1 = std::floor(0.45 * a.committed().duration() * 10.0) / 10.0;
+    EXPECT_TRUE(fly(a, 0.01, t1).empty());
+    *state = a.committed().state((at(t1) - a.committedStartUtime()) * 1e-6);
+    EXPECT_GT(state->velocity.norm(), 1.0);
+    return t1;
+  }
+
   void putPillar(double x, double y, double radius) {
     for (int64_t i = 0; i < grid_.numCells(); ++i) {
       const Vector3d c = grid_.centerOfLocal(grid_.localFromLinear(i));
@@ -292,14 +305,8 @@ TEST_F(ArbiterRules, SomFailureFallsBackToEam) {
 
 TEST_F(ArbiterRules, NoAnswerByTheDeadlineWithDangerAheadCommitsAStop) {
   auto a = started(Policy::kMmh);
-  auto r = a->takeRequests().at(0);
-  a->onAnswer(okAnswer(r), at(0.001));
-  ASSERT_TRUE(a->takeCommit());
-  // Fly to just before the halfway point, where the vehicle is fast.
-  const double t1 = std::floor(0.45 * a->committed().duration() * 10.0) / 10.0;
-  ASSERT_TRUE(fly(*a, 0.01, t1).empty());
-  const KinematicState before = a->committed().state((at(t1) - a->committedStartUtime()) * 1e-6);
-  ASSERT_GT(before.velocity.norm(), 1.0);
+  KinematicState before;
+  const double t1 = flyToCruise(*a, &before);
   // Near enough that a stop begun stop_decision_margin_s later would reach it.
   putPillar(before.position.x() + 2.5, 0.0, 0.4);
   a->onMapUpdated(grid_, ++map_seq_, at(t1), at(t1));
@@ -327,12 +334,9 @@ TEST_F(ArbiterRules, AFarDangerLetsTheStopWaitUntilItCannotWaitAnyLonger) {
   params_.stale_map_s = 10.0;  // no new maps in this test, and no stale-map stop either
   params_.defer_far_collisions = false;
   auto a = started(Policy::kMmh);
-  auto r = a->takeRequests().at(0);
-  a->onAnswer(okAnswer(r), at(0.001));
-  ASSERT_TRUE(a->takeCommit());
-  const double t1 = std::floor(0.45 * a->committed().duration() * 10.0) / 10.0;
-  ASSERT_TRUE(fly(*a, 0.01, t1).empty());
-  const Vector3d p1 = a->committed().position((at(t1) - a->committedStartUtime()) * 1e-6);
+  KinematicState before;
+  const double t1 = flyToCruise(*a, &before);
+  const Vector3d p1 = before.position;
   const Vector3d pillar(p1.x() + 7.0, 0.0, 0.0);
   putPillar(pillar.x(), 0.0, 0.4);
   a->onMapUpdated(grid_, ++map_seq_, at(t1), at(t1));
@@ -362,13 +366,8 @@ TEST_F(ArbiterRules, WhileStuckAFailedRoundWithTheDangerCloseStopsAtOnce) {
   params_.progress_min_step_m = 1000.0;
   params_.stuck_after_s = 0.5;
   auto a = started(Policy::kMmh);
-  auto r = a->takeRequests().at(0);
-  a->onAnswer(okAnswer(r), at(0.001));
-  ASSERT_TRUE(a->takeCommit());
-  const double t1 = std::floor(0.45 * a->committed().duration() * 10.0) / 10.0;
-  ASSERT_TRUE(fly(*a, 0.01, t1).empty());
-  const KinematicState before = a->committed().state((at(t1) - a->committedStartUtime()) * 1e-6);
-  ASSERT_GT(before.velocity.norm(), 1.0);
+  KinematicState before;
+  const double t1 = flyToCruise(*a, &before);
   putPillar(before.position.x() + 2.5, 0.0, 0.4);
   a->onMapUpdated(grid_, ++map_seq_, at(t1), at(t1));
   auto eam = a->takeRequests();
@@ -385,13 +384,8 @@ TEST_F(ArbiterRules, WhileStuckAFailedRoundWithTheDangerCloseStopsAtOnce) {
 
 TEST_F(ArbiterRules, UnmappedSpaceWithinStoppingReachAsksARoundThenStopsBeforeIt) {
   auto a = started(Policy::kMmh);
-  auto r = a->takeRequests().at(0);
-  a->onAnswer(okAnswer(r), at(0.001));
-  ASSERT_TRUE(a->takeCommit());
-  const double t1 = std::floor(0.45 * a->committed().duration() * 10.0) / 10.0;
-  ASSERT_TRUE(fly(*a, 0.01, t1).empty());
-  const KinematicState before = a->committed().state((at(t1) - a->committedStartUtime()) * 1e-6);
-  ASSERT_GT(before.velocity.norm(), 1.0);
+  KinematicState before;
+  const double t1 = flyToCruise(*a, &before);
   // A slab the sensor never saw, across the way, 2.2 m ahead: within the reach of a vehicle
   // this fast (lead and decision margin, then its stopping distance), though nothing is in it.
   const double slab_x = before.position.x() + 2.2;

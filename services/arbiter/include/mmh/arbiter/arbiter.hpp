@@ -195,6 +195,8 @@ class Arbiter {
   void stopIfNoTimeLeft(int64_t now, bool by_deadline, const std::string& notes, Trigger trigger);
   // A stop begun stop_decision_margin_s later would still end clear of the known obstacles.
   bool stopCanWait(int64_t now) const;
+  // The stop (chooseStoppingTrajectory) that leaves the committed trajectory t0_s into it.
+  Trajectory stopAlongCommitted(double t0_s) const;
   // Sets the phase after a round's decision or a stop, unless a new goal came meanwhile (its
   // round comes next whatever the old round decided).
   void enterPhase(Phase phase);
