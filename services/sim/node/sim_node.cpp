@@ -164,6 +164,30 @@ void SimNode::step(bool publish_scans) {
             " does not start where the vehicle is: jumped " +
             std::to_string(sim_.vehicle().lastJump()) + " m");
   }
+  if (sim_.vehicle().lostCommits() != lost_commits_seen_) {
+    ctx_.increment("trajectories_lost", sim_.vehicle().lostCommits() - lost_commits_seen_);
+    lost_commits_seen_ = sim_.vehicle().lostCommits();
+    logWarn(ctx_.service() + ": " + std::to_string(lost_commits_seen_) +
+            " TRAJECTORY message(s) lost in transport so far (a gap in the trajectory ids; raise "
+            "the receive buffers, docs/operations.md)");
+  }
+  if (sim_.vehicle().jumpsAfterLoss() != jumps_after_loss_seen_) {
+    ctx_.increment("trajectory_jumps_after_loss",
+                   sim_.vehicle().jumpsAfterLoss() - jumps_after_loss_seen_);
+    jumps_after_loss_seen_ = sim_.vehicle().jumpsAfterLoss();
+    logWarn(ctx_.service() + ": trajectory " + std::to_string(sim_.vehicle().activeTrajectoryId()) +
+            " continues a lost one, not what the vehicle flew: stepped " +
+            std::to_string(sim_.vehicle().lastJump()) + " m");
+  }
+  if (sim_.vehicle().lateTakeovers() != late_takeovers_seen_) {
+    ctx_.increment("trajectories_late", sim_.vehicle().lateTakeovers() - late_takeovers_seen_);
+    late_takeovers_seen_ = sim_.vehicle().lateTakeovers();
+    logWarn(ctx_.service() + ": trajectory " + std::to_string(sim_.vehicle().activeTrajectoryId()) +
+            " arrived " + std::to_string(static_cast<int>(sim_.vehicle().lastLatenessS() * 1e3)) +
+            " ms after its start time (delivered late: the commit's lead was shorter than the "
+            "delay); taken over with a " +
+            std::to_string(sim_.vehicle().lastLateStepM()) + " m step");
+  }
   const sim::MissionMetrics& m = sim_.metrics();
   if (m.reached && !reported_reached_) {
     reported_reached_ = true;

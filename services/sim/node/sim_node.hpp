@@ -52,6 +52,7 @@ class SimNode {
   sim::Simulator sim_;
   bool reported_reached_ = false, reported_collision_ = false;
   int jumps_seen_ = 0;
+  int late_takeovers_seen_ = 0, lost_commits_seen_ = 0, jumps_after_loss_seen_ = 0;
   size_t arrivals_reported_ = 0;
 };
 

@@ -106,12 +106,9 @@ bool MissionMonitor::update(int64_t now_utime, const Vehicle& vehicle,
     model_distance_seen_m_ = vehicle.modelDistance();
     model_energy_seen_ = vehicle.modelEnergy();
   }
-  if (vehicle.jumps() != jumps_seen_) {
-    metrics_.distance_m += vehicle.jumpDistance() - jumps_seen_m_;
-    jumps_seen_m_ = vehicle.jumpDistance();
-    jumps_seen_ = vehicle.jumps();
-    metrics_.trajectory_jumps = jumps_seen_;
-  }
+  metrics_.distance_m += vehicle.jumpDistance() - jumps_seen_m_;
+  jumps_seen_m_ = vehicle.jumpDistance();
+  metrics_.trajectory_jumps = vehicle.jumps();
   if (!metrics_.started && vehicle.firstTrajectoryUtime() >= 0) {
     metrics_.started = true;
     metrics_.start_utime = vehicle.firstTrajectoryUtime();

@@ -28,6 +28,13 @@ Eigen::Quaterniond Vehicle::orientation() const {
 
 void Vehicle::commit(std::shared_ptr<const Trajectory> trajectory, int64_t start_utime,
                      int64_t trajectory_id) {
+  // The arbiter numbers its commits 1, 2, 3...: a gap means the transport lost one (a restarted
+  // arbiter starts again from 1, which is no loss).
+  if (last_commit_id_ > 0 && trajectory_id > last_commit_id_ + 1) {
+    lost_commits_ += static_cast<int>(trajectory_id - last_commit_id_ - 1);
+    follows_a_lost_commit_.insert(trajectory_id);
+  }
+  last_commit_id_ = trajectory_id;
   schedule_.commit(std::move(trajectory), start_utime, trajectory_id);
 }
 
@@ -82,7 +89,13 @@ void Vehicle::advanceOnTrajectory(int64_t now_utime, std::vector<FlownPart>* flo
     const int64_t switch_at = std::max(next->start_utime, t);
     flyActive(t, switch_at, flown);
     const Eigen::Vector3d before = stateAt(switch_at).position;
-    if (next->trajectory && !next->trajectory->empty()) {
+    // Where the old trajectory was at the new one's start: a gap there is a discontinuity of the
+    // trajectories themselves; a step only at switch_at comes from the commit arriving late.
+    const Eigen::Vector3d at_its_start = stateAt(next->start_utime).position;
+    const bool has_trajectory = next->trajectory && !next->trajectory->empty();
+    const double gap_at_start =
+        has_trajectory ? (next->trajectory->position(0.0) - at_its_start).norm() : 0.0;
+    if (has_trajectory) {
       active_ = std::move(next->trajectory);
       active_start_ = next->start_utime;
       active_id_ = next->id;
@@ -92,10 +105,19 @@ void Vehicle::advanceOnTrajectory(int64_t now_utime, std::vector<FlownPart>* flo
       active_id_ = next->id;
       hold_ = before;
     }
-    last_jump_ = (stateAt(switch_at).position - before).norm();
-    if (last_jump_ > 1e-3) {
+    const double step = (stateAt(switch_at).position - before).norm();
+    jump_distance_ += step > kJumpM ? step : 0.0;
+    const bool after_loss = follows_a_lost_commit_.erase(next->id) > 0;
+    if (gap_at_start > kJumpM && after_loss) {
+      ++jumps_after_loss_;
+      last_jump_ = step;
+    } else if (gap_at_start > kJumpM || (step > kJumpM && switch_at == next->start_utime)) {
       ++jumps_;
-      jump_distance_ += last_jump_;
+      last_jump_ = step;
+    } else if (switch_at > next->start_utime) {
+      ++late_takeovers_;
+      last_lateness_s_ = 1e-6 * static_cast<double>(switch_at - next->start_utime);
+      last_late_step_m_ = step;
     }
     t = switch_at;
   }

@@ -160,7 +160,7 @@ int main(int argc, char** argv) {
   std::optional<mmh::mission_status_t> mission;
   std::vector<bool> status_seen(o.statuses.size(), false);
   std::map<std::string, int64_t> counter_max;  // "service:name" -> largest value seen
-  int64_t sim_jumps = 0;
+  int64_t sim_jumps = 0, sim_late = 0, sim_lost = 0, sim_jumps_after_loss = 0;
   int by_mode[5] = {0, 0, 0, 0, 0};
 
   while (const lcm::LogEvent* e = log.readNextEvent()) {
@@ -220,6 +220,12 @@ int main(int argc, char** argv) {
         v = std::max(v, m.counter_values[i]);
         if (m.service == "mmh-sim" && m.counter_names[i] == "trajectory_jumps")
           sim_jumps = std::max(sim_jumps, m.counter_values[i]);
+        if (m.service == "mmh-sim" && m.counter_names[i] == "trajectories_late")
+          sim_late = std::max(sim_late, m.counter_values[i]);
+        if (m.service == "mmh-sim" && m.counter_names[i] == "trajectories_lost")
+          sim_lost = std::max(sim_lost, m.counter_values[i]);
+        if (m.service == "mmh-sim" && m.counter_names[i] == "trajectory_jumps_after_loss")
+          sim_jumps_after_loss = std::max(sim_jumps_after_loss, m.counter_values[i]);
       }
     }
   }
@@ -228,7 +234,9 @@ int main(int argc, char** argv) {
   std::cout << "trajectories committed: " << trajectories << " (FPM " << by_mode[1] << ", SOM "
             << by_mode[2] << ", EAM " << by_mode[3] << ", stops " << stops
             << "), largest take-over gap " << max_jump_m << " m, jumps " << jumps
-            << ", jumps seen by mmh-sim " << sim_jumps << "\n";
+            << ", jumps seen by mmh-sim " << sim_jumps
+            << "; delivered to mmh-sim after their start time " << sim_late << ", lost on the way "
+            << sim_lost << " (steps onto the next one " << sim_jumps_after_loss << ")\n";
   if (trajectories == 0) {
     std::cout << "FAIL: no TRAJECTORY in the log\n";
     ok = false;

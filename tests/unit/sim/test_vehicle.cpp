@@ -92,6 +92,39 @@ TEST(Vehicle, SwitchesAtTheNewStartTimeWithoutAJump) {
   EXPECT_GT(v.jumpDistance(), 3.0);
 }
 
+TEST(Vehicle, ACommitDeliveredAfterItsStartIsTakenOverLateNotCountedAsAJump) {
+  const Vector3d start(0, 0, 1);
+  Vehicle v(start, 0.0, kT0, mmh::sim::SimParams{});
+  auto first = mmh::test::line(start, Vector3d(1, 0, 0), 10.0);
+  v.commit(first, kT0, 1);
+  std::vector<FlownPart> flown;
+  for (int i = 1; i <= 100; ++i) v.advance(kT0 + i * kStep, &flown);  // 1 s along x
+  // Continuous with the old trajectory at 0.95 s, but delivered at 1.0 s: the vehicle is already
+  // 5 cm along x, where the new one (along y) is not.
+  auto second = mmh::test::line(first->position(0.95), Vector3d(0, 1, 0), 5.0);
+  v.commit(second, kT0 + 950'000, 2);
+  v.advance(kT0 + 101 * kStep, &flown);
+  EXPECT_EQ(v.activeTrajectoryId(), 2);
+  EXPECT_EQ(v.jumps(), 0);
+  EXPECT_EQ(v.lateTakeovers(), 1);
+  EXPECT_NEAR(v.lastLatenessS(), 0.05, 1e-9);
+  EXPECT_NEAR(v.lastLateStepM(), std::sqrt(0.05 * 0.05 + 0.05 * 0.05), 1e-9);
+  EXPECT_NEAR(v.jumpDistance(), v.lastLateStepM(), 1e-12);
+  // Late and discontinuous at its own start: still a jump.
+  v.commit(mmh::test::line(Vector3d(5, 5, 1), Vector3d::Zero(), 1.0), kT0 + 1'000'000, 3);
+  v.advance(kT0 + 102 * kStep, &flown);
+  EXPECT_EQ(v.jumps(), 1);
+  EXPECT_EQ(v.lateTakeovers(), 1);
+  EXPECT_EQ(v.lostCommits(), 0);
+  // Commit 4 lost in transport: 5 continues it, not what the vehicle flies. Counted apart.
+  v.commit(mmh::test::line(Vector3d(7, 7, 1), Vector3d::Zero(), 1.0), kT0 + 1'040'000, 5);
+  v.advance(kT0 + 105 * kStep, &flown);
+  EXPECT_EQ(v.activeTrajectoryId(), 5);
+  EXPECT_EQ(v.lostCommits(), 1);
+  EXPECT_EQ(v.jumpsAfterLoss(), 1);
+  EXPECT_EQ(v.jumps(), 1);
+}
+
 TEST(Vehicle, LaterCommitReplacesQueuedOnesAndEmptyMeansHold) {
   const Vector3d start(0, 0, 1);
   Vehicle v(start, 0.0, kT0, mmh::sim::SimParams{});

@@ -107,7 +107,6 @@ class MissionMonitor {
   Eigen::Vector3d arrival_point_ = Eigen::Vector3d::Zero();  // the goal, or the moved goal
   bool arrived_at_goal_ = false;
   double jumps_seen_m_ = 0.0;
-  int jumps_seen_ = 0;
   double model_distance_seen_m_ = 0.0, model_energy_seen_ = 0.0;
   double tracking_error_sum_sq_ = 0.0;
 };

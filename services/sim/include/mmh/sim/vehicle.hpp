@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <set>
 #include <vector>
 
 #include "mmh/common/heading.hpp"
@@ -56,11 +57,22 @@ class Vehicle {
   // Start time of the first trajectory that took over (following setpoints: of the first setpoint
   // on a trajectory); -1 before that.
   int64_t firstTrajectoryUtime() const { return first_utime_; }
-  // A new trajectory that did not start where the vehicle was (more than 1 mm away): the vehicle
-  // jumps, since it follows the trajectory exactly. Counted and summed for the mission metrics.
+  // A new trajectory that did not start where the old one was at its start time (more than 1 mm
+  // away): the vehicle jumps, since it follows the trajectory exactly. A planner or arbiter bug.
   int jumps() const { return jumps_; }
-  double jumpDistance() const { return jump_distance_; }
   double lastJump() const { return last_jump_; }
+  // A trajectory that arrived after its start time (the commit was delivered late: a loaded
+  // computer or network) is taken over at the next step, where it may be a little away from the
+  // old one; a real vehicle's controller absorbs such a step. Counted apart from jumps.
+  int lateTakeovers() const { return late_takeovers_; }
+  double lastLatenessS() const { return last_lateness_s_; }
+  double lastLateStepM() const { return last_late_step_m_; }
+  // Commits the transport lost (a gap in the arbiter's trajectory ids), and the jumps onto the
+  // commit after such a gap: it continues the lost one, not what the vehicle flies. Counted apart.
+  int lostCommits() const { return lost_commits_; }
+  int jumpsAfterLoss() const { return jumps_after_loss_; }
+  // Sum of the position steps of all kinds, for the distance flown.
+  double jumpDistance() const { return jump_distance_; }
   // Following setpoints: the arc length flown and the integral of |jerk|^2 dt so far, and the
   // distance from the vehicle to the reference at the last step (nullopt before a setpoint).
   double modelDistance() const { return model_distance_m_; }
@@ -83,8 +95,12 @@ class Vehicle {
   int64_t active_start_ = 0, active_id_ = 0;
   TrajectorySchedule schedule_;
   int64_t first_utime_ = -1;
-  int jumps_ = 0;
+  static constexpr double kJumpM = 1e-3;
+  int jumps_ = 0, late_takeovers_ = 0, lost_commits_ = 0, jumps_after_loss_ = 0;
+  int64_t last_commit_id_ = 0;
+  std::set<int64_t> follows_a_lost_commit_;
   double jump_distance_ = 0.0, last_jump_ = 0.0;
+  double last_lateness_s_ = 0.0, last_late_step_m_ = 0.0;
   double yaw_ = 0.0;
   // Following setpoints.
   bool follows_setpoints_ = false;
