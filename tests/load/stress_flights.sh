@@ -75,6 +75,7 @@ fly() {
              if ($16 > mx) mx = $16 } END { printf "%.2f %.2f %.2f", p50, p99, mx }' "$dir/summary.txt")
   local degraded
   degraded=$(sed -n 's/^arbiter degraded: *\([0-9]*\).*/\1/p' "$dir/summary.txt")
+  "$build/bin/mmh-log-summary" --reactions "$dir/flight.lcm" >>"$out/reactions-cpu$load-d$density.txt" 2>/dev/null || true
   echo "$load $density $seed $result ${time_s:-0} $lat ${degraded:-0}" >>"$out/flights.txt"
   echo "cpu $load density $density seed $seed: $result ${time_s:-?} s, latency p99 $(echo "$lat" | cut -d' ' -f2) ms"
 }
@@ -102,6 +103,21 @@ done
   echo
   echo "(latency: request to answer, the worst mode of each flight; p50 averaged, p99 and max the worst flight's;"
   echo "degraded: decisions the arbiter took with its latency budget degraded, summed)"
+  echo
+  echo "Newly mapped danger on the committed trajectory -> the answer (a new trajectory or a stop) committed,"
+  echo "from the scan that showed it to the ARBITER_STATUS received by the logger, all flights pooled:"
+  echo
+  echo "| stress-ng --cpu | density | reactions | p50 (ms) | p90 (ms) | p99 (ms) | max (ms) |"
+  echo "|---|---|---|---|---|---|---|"
+  for load in "${load_list[@]}"; do
+    for density in "${density_list[@]}"; do
+      sort -g "$out/reactions-cpu$load-d$density.txt" 2>/dev/null | awk -v l="$load" -v d="$density" '
+        { v[NR] = $1 }
+        function at(q,  i, lo) { i = q * (NR - 1); lo = int(i); return v[lo + 1] + (v[lo + (lo + 1 < NR ? 2 : 1)] - v[lo + 1]) * (i - lo) }
+        END { if (NR == 0) printf "| %s | %s | 0 | - | - | - | - |\n", l, d;
+              else printf "| %s | %s | %d | %.1f | %.1f | %.1f | %.1f |\n", l, d, NR, at(0.5), at(0.9), at(0.99), v[NR] }'
+    done
+  done
   echo
   echo '```'
   echo "cpu density seed result time_s p50_ms p99_ms max_ms degraded"

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <iomanip>
 #include <stdexcept>
 
@@ -165,6 +166,11 @@ LogSummary summarizeLog(const std::string& path) {
       if (m.outcome == arbiter_status_t::OUTCOME_COMMITTED ||
           m.outcome == arbiter_status_t::OUTCOME_STOPPING)
         ++v.commits[m.committed_mode];
+      if (m.threat_seen_utime > 0) {
+        const bool real_time = std::abs(e->timestamp - m.header.utime) < 1'000'000;
+        const int64_t answered = real_time ? e->timestamp : m.header.utime;
+        v.reaction_ms.push_back((answered - m.threat_seen_utime) * 1e-3);
+      }
     } else if (base == "MISSION_STATUS") {
       mission_status_t m;
       if (!decode(*e, m)) {
@@ -229,6 +235,10 @@ void printSummary(const LogSummary& s, std::ostream& out) {
       out << "\n";
       out << "arbiter degraded: " << v.degraded_decisions << " decisions (longest answer deadline "
           << v.max_answer_deadline_s * 1e3 << " ms)\n";
+      const Percentiles r = percentiles(v.reaction_ms);
+      out << "newly mapped danger -> answer committed: " << v.reaction_ms.size()
+          << " reactions, ms p50/p90/p99/max " << r.p50 << " / " << r.p90 << " / " << r.p99 << " / "
+          << r.max << "\n";
     }
     if (v.mission_seen) {
       out << "mission: " << (v.reached ? "reached" : "not reached")

@@ -51,6 +51,9 @@ struct VehicleSummary {                          // one channel prefix
   // Decisions taken with the arbiter's latency budget degraded, and the longest deadline used.
   int64_t degraded_decisions = 0;
   double max_answer_deadline_s = 0;
+  // A newly mapped danger to its answer (commit or stop): the status's arrival in the log (its own
+  // time when the log was not recorded in real time) minus the scan time of the map that showed it.
+  std::vector<double> reaction_ms;
   std::vector<DecisionLine> decisions;
   bool mission_seen = false, reached = false, collided = false;
   double flight_time_s = 0, distance_m = 0, energy = 0;

@@ -153,6 +153,7 @@ void ArbiterNode::flush() {
     msg.answer_deadline_s = budget.answer_deadline_s;
     msg.degraded = budget.degraded;
     msg.degraded_reason = budget.why;
+    msg.threat_seen_utime = d.threat_seen_utime;
     ctx_.publish(channels::kArbiterStatus, msg);
     if (d.outcome == arbiter::Outcome::kStopping) logWarn("arbiter: stopping: " + d.detail);
     if (d.outcome == arbiter::Outcome::kUnreachable) logWarn("arbiter: " + d.detail);

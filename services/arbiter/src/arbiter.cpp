@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "mmh/arbiter/goal_placement.hpp"
 #include "mmh/arbiter/local_target.hpp"
@@ -132,6 +133,7 @@ void Arbiter::onMapUpdated(const VoxelGrid& grid, int64_t map_seq, int64_t map_u
     }
     if (threat_s) {
       collision_eta_s_ = collision_eta_s_ ? std::min(*collision_eta_s_, *threat_s) : *threat_s;
+      if (!threat_seen_utime_) threat_seen_utime_ = map_utime;
     }
   }
   evaluate(now_);
@@ -349,6 +351,8 @@ void Arbiter::startRound(Trigger trigger, const std::vector<Mode>& modes, int64_
   round.trigger = trigger;
   if (trigger == Trigger::kCollision) round.note = threat_note_;
   threat_note_.clear();
+  round.threat_seen_utime = threat_seen_utime_;
+  threat_seen_utime_.reset();
   round.start.start_utime = now + static_cast<int64_t>(budget_.replan_lead_s * 1e6);
   round.deadline_utime = now + static_cast<int64_t>(budget_.answer_deadline_s * 1e6);
   round.start.state = stateAt(round.start.start_utime);
@@ -458,6 +462,7 @@ void Arbiter::commitStop(int64_t now, const std::string& why, Trigger trigger) {
           ? stopAlongCommitted((start - committed_.start_utime) * kUs)
           : makeStoppingTrajectory(stateAt(start), params_.max_acc_mps2, params_.max_vel_mps);
   commit(stop, start, Mode::kStop, false);
+  const std::optional<int64_t> threat_seen = std::exchange(threat_seen_utime_, std::nullopt);
   // Braking is not a plan: keep trying the modes, from the next map on.
   enterPhase(Phase::kRecovering);
   chain_.recordFailure(map_seq_);
@@ -469,6 +474,7 @@ void Arbiter::commitStop(int64_t now, const std::string& why, Trigger trigger) {
   d.trajectory_id = commit_->trajectory_id;
   d.local_target = stop.position(stop.duration());
   d.detail = why;
+  d.threat_seen_utime = threat_seen.value_or(0);
   pushDecision(d);
 }
 
@@ -525,8 +531,14 @@ void Arbiter::decide(int64_t now, bool by_deadline) {
     d.committed_mode = best->mode;
     d.trajectory_id = commit_->trajectory_id;
     d.detail = notes + "committed " + toString(best->mode);
+    d.threat_seen_utime = round.threat_seen_utime.value_or(0);
     pushDecision(d);
     return;
+  }
+  // The danger stays unanswered: the retry, or the stop, answers it.
+  if (round.threat_seen_utime &&
+      (!threat_seen_utime_ || *round.threat_seen_utime < *threat_seen_utime_)) {
+    threat_seen_utime_ = round.threat_seen_utime;
   }
   ++counters_.failures;
   enterPhase(Phase::kRecovering);

@@ -330,6 +330,57 @@ TEST_F(ArbiterRules, NoAnswerByTheDeadlineWithDangerAheadCommitsAStop) {
   EXPECT_LE(stop.maxAcceleration(), params_.max_acc_mps2 + 1e-9);
 }
 
+TEST_F(ArbiterRules, TheAnswerToANewlyMappedDangerNamesWhenTheMapShowedIt) {
+  params_.emergency_horizon_s = 30.0;  // every collision is an emergency: EAM
+  auto a = started(Policy::kMmh);
+  KinematicState before;
+  const double t1 = flyToCruise(*a, &before);
+  a->takeDecisions();
+  // The map of a scan taken 30 ms ago shows a pillar on the committed trajectory.
+  putPillar(before.position.x() + 4.0, 0.0, 0.4);
+  a->onMapUpdated(grid_, ++map_seq_, at(t1 - 0.03), at(t1));
+  auto eam = a->takeRequests();
+  ASSERT_EQ(eam.size(), 1u);
+  // EAM answers with a stop short of the pillar: committed, naming the scan's time.
+  ModeAnswer answer = okAnswer(eam[0]);
+  answer.trajectory = simplePlan(eam[0].start, eam[0].start.position + Vector3d(2.0, 0, 0));
+  a->onAnswer(answer, at(t1 + 0.005));
+  ASSERT_TRUE(a->takeCommit());
+  auto decisions = a->takeDecisions();
+  ASSERT_EQ(decisions.size(), 1u);
+  EXPECT_EQ(decisions[0].outcome, Outcome::kCommitted) << decisions[0].detail;
+  EXPECT_EQ(decisions[0].threat_seen_utime, at(t1 - 0.03));
+  // Decisions that answer no new danger name none.
+  EXPECT_TRUE(fly(*a, t1 + 0.01, t1 + 0.3).empty());
+  a->onAnswer(okAnswer(eam[0]), at(t1 + 0.31));  // a duplicate: ignored
+  for (const DecisionOut& d : a->takeDecisions()) EXPECT_EQ(d.threat_seen_utime, 0);
+}
+
+TEST_F(ArbiterRules, AStopAfterAFailedRoundAnswersTheDangerThatRoundWasFor) {
+  auto a = started(Policy::kMmh);
+  KinematicState before;
+  const double t1 = flyToCruise(*a, &before);
+  a->takeDecisions();
+  putPillar(before.position.x() + 2.5, 0.0, 0.4);
+  a->onMapUpdated(grid_, ++map_seq_, at(t1 - 0.02), at(t1));
+  auto eam = a->takeRequests();
+  ASSERT_EQ(eam.size(), 1u);
+  a->onAnswer(failedAnswer(eam[0]), at(t1 + 0.005));
+  auto decisions = a->takeDecisions();
+  ASSERT_FALSE(decisions.empty());
+  EXPECT_EQ(decisions.front().outcome, Outcome::kFailed);
+  EXPECT_EQ(decisions.front().threat_seen_utime, 0);  // not answered yet
+  // The stop (now, or after the fallback fails too) answers it.
+  for (int i = 0; i < 5 && decisions.back().outcome != Outcome::kStopping; ++i) {
+    for (auto& r : fly(*a, t1 + 0.01 * (i + 1), t1 + 0.01 * (i + 1))) {
+      a->onAnswer(failedAnswer(r), at(t1 + 0.01 * (i + 1) + 0.001));
+    }
+    for (auto& d : a->takeDecisions()) decisions.push_back(d);
+  }
+  ASSERT_EQ(decisions.back().outcome, Outcome::kStopping);
+  EXPECT_EQ(decisions.back().threat_seen_utime, at(t1 - 0.02));
+}
+
 TEST_F(ArbiterRules, AFarDangerLetsTheStopWaitUntilItCannotWaitAnyLonger) {
   params_.stale_map_s = 10.0;  // no new maps in this test, and no stale-map stop either
   params_.defer_far_collisions = false;

@@ -72,6 +72,9 @@ struct DecisionOut {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   Eigen::Vector3d local_target = Eigen::Vector3d::Zero();
   std::string detail;
+  // Committing or stopping in answer to a newly mapped danger (an obstacle or unmapped space on
+  // the committed trajectory): the time of the map that first showed it (its scan's time). 0 else.
+  int64_t threat_seen_utime = 0;
 };
 
 struct ArbiterCounters {
@@ -165,6 +168,7 @@ class Arbiter {
     std::vector<ModeAnswer> answers;
     std::string note;      // why this round has an unusual target (a back-off)
     bool repairs = false;  // re-plans the rest of the committed trajectory, to its end
+    std::optional<int64_t> threat_seen_utime;  // the danger this round answers, if any
   };
 
   // The policy's inputs now (replan_rules.hpp).
@@ -230,8 +234,9 @@ class Arbiter {
   // Committed trajectory and planning.
   Committed committed_;
   std::optional<Round> round_;
-  std::optional<double> collision_eta_s_;  // a threatening collision awaits its round
-  std::string threat_note_;                // what the threat is, when not an obstacle
+  std::optional<double> collision_eta_s_;     // a threatening collision awaits its round
+  std::string threat_note_;                   // what the threat is, when not an obstacle
+  std::optional<int64_t> threat_seen_utime_;  // map time of the danger not yet answered
   FallbackChain chain_;
   ProgressMonitor progress_;
   LatencyMonitor latency_;
