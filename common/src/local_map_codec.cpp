@@ -1,5 +1,6 @@
 #include "mmh/common/local_map_codec.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace mmh {
@@ -116,17 +117,20 @@ bool validateLocalMap(const local_map_t& msg, std::string* error) {
   return true;
 }
 
-bool applyRuns(const local_map_t& msg, VoxelGrid& grid, std::string* error,
-               std::vector<int64_t>* written) {
-  struct Run {
-    int64_t start, length;
-    uint8_t state;
-  };
-  // Parse and check everything first, so that a malformed message changes nothing.
-  std::vector<Run> runs;
+namespace {
+
+struct Run {
+  int64_t start, length;
+  uint8_t state;
+};
+
+// The runs of a message for a window of n cells, all checked, so that a malformed message can be
+// refused before anything changes.
+bool parseRuns(const local_map_t& msg, int64_t n, std::vector<Run>* out, std::string* error) {
+  std::vector<Run>& runs = *out;
+  runs.clear();
   size_t pos = 0;
   int64_t cursor = 0;
-  const int64_t n = grid.numCells();
   while (pos < msg.runs.size()) {
     uint64_t skip = 0, length = 0;
     if (!getVarint(msg.runs, pos, skip) || !getVarint(msg.runs, pos, length) ||
@@ -145,6 +149,15 @@ bool applyRuns(const local_map_t& msg, VoxelGrid& grid, std::string* error,
     runs.push_back(Run{cursor, static_cast<int64_t>(length), state});
     cursor += static_cast<int64_t>(length);
   }
+  return true;
+}
+
+}  // namespace
+
+bool applyRuns(const local_map_t& msg, VoxelGrid& grid, std::string* error,
+               std::vector<int64_t>* written) {
+  std::vector<Run> runs;
+  if (!parseRuns(msg, grid.numCells(), &runs, error)) return false;
   for (const Run& run : runs) {
     for (int64_t k = run.start; k < run.start + run.length; ++k) {
       grid.setLinear(k, static_cast<Occupancy>(run.state));
@@ -167,6 +180,34 @@ LocalMapReceiver::Result LocalMapReceiver::apply(const local_map_t& msg, std::st
     return Result::kStale;
   }
   last_changed_.clear();
+  const bool same_geometry =
+      have_grid_ && size == grid_.size() && std::abs(msg.resolution_m - grid_.resolution()) <= 1e-9;
+  if (msg.kind == local_map_t::KIND_KEYFRAME && same_geometry) {
+    // Mostly what the deltas already built: write only the cells that differ, so that the
+    // inflation of the whole window (tens of ms with a mapped ground) is not rebuilt while plan
+    // requests wait. The result equals a fresh decode, whatever the grid held before.
+    std::vector<Run> runs;
+    if (!parseRuns(msg, grid_.numCells(), &runs, &why)) {
+      if (reason) *reason = "keyframe: " + why;
+      return Result::kRejected;
+    }
+    keyframe_cells_.assign(static_cast<size_t>(grid_.numCells()),
+                           static_cast<uint8_t>(Occupancy::kUnknown));
+    for (const Run& run : runs) {
+      std::fill_n(keyframe_cells_.begin() + run.start, run.length, run.state);
+    }
+    grid_.shiftTo(origin);
+    const std::vector<uint8_t>& cells = grid_.rawCells();
+    for (int64_t i = 0; i < grid_.numCells(); ++i) {
+      if (cells[i] != keyframe_cells_[i])
+        grid_.setLinear(i, static_cast<Occupancy>(keyframe_cells_[i]));
+    }
+    synced_ = true;
+    last_seq_ = msg.map_seq;
+    last_utime_ = msg.header.utime;
+    last_was_keyframe_ = true;
+    return Result::kApplied;
+  }
   if (msg.kind == local_map_t::KIND_KEYFRAME) {
     // Decode into a fresh grid first so that a malformed keyframe leaves the old map intact.
     VoxelGrid fresh(msg.resolution_m, origin, size);

@@ -4,7 +4,8 @@
 # priority. For every load, density and forest seed one flight; reports in OUT/report.md per
 # (load, density): success, collisions, safe stops without arrival, mean flight time, the
 # request-to-answer latency percentiles and how many decisions the arbiter took degraded (its
-# latency budget above the configured one), then every flight.
+# latency budget above the configured one); the reaction time from a newly mapped danger to its
+# answer committed, pooled over the flights of each load and density; then every flight.
 #
 #   tests/load/stress_flights.sh BUILD_DIR [--cpu 0,2,4] [--densities 0.1,0.2] [--seeds N]
 #                                [--first-seed S] [--timeout S] [--out DIR]

@@ -162,7 +162,7 @@ LogSummary summarizeLog(const std::string& path) {
       v.max_answer_deadline_s = std::max(v.max_answer_deadline_s, m.answer_deadline_s);
       v.decisions.push_back({(e->timestamp - s.first_us) * 1e-6, m.trigger, m.outcome,
                              m.committed_mode, m.awareness_safe != 0, m.position[0], m.position[1],
-                             m.detail});
+                             m.detail, -1});
       if (m.outcome == arbiter_status_t::OUTCOME_COMMITTED ||
           m.outcome == arbiter_status_t::OUTCOME_STOPPING)
         ++v.commits[m.committed_mode];
@@ -170,6 +170,7 @@ LogSummary summarizeLog(const std::string& path) {
         const bool real_time = std::abs(e->timestamp - m.header.utime) < 1'000'000;
         const int64_t answered = real_time ? e->timestamp : m.header.utime;
         v.reaction_ms.push_back((answered - m.threat_seen_utime) * 1e-3);
+        v.decisions.back().reaction_ms = v.reaction_ms.back();
       }
     } else if (base == "MISSION_STATUS") {
       mission_status_t m;
@@ -255,7 +256,9 @@ void printDecisions(const LogSummary& s, std::ostream& out) {
       out << prefix << std::setw(8) << d.t_s << " s  (" << std::setw(6) << d.x << ", "
           << std::setw(6) << d.y << ")  S=" << (d.safe ? "1" : "0") << "  "
           << triggerName(d.trigger) << " -> " << outcomeName(d.outcome) << " "
-          << modeName(d.committed_mode) << "  " << d.detail << "\n";
+          << modeName(d.committed_mode) << "  " << d.detail;
+      if (d.reaction_ms >= 0) out << "  [danger seen " << d.reaction_ms << " ms before]";
+      out << "\n";
     }
   }
 }

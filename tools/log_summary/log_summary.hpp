@@ -37,6 +37,7 @@ struct DecisionLine {  // one ARBITER_STATUS, for --decisions
   bool safe = true;
   double x = 0, y = 0;
   std::string detail;
+  double reaction_ms = -1;  // answering a newly mapped danger: its reaction time; else -1
 };
 
 struct VehicleSummary {                          // one channel prefix

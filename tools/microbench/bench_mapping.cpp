@@ -10,6 +10,7 @@
 
 #include "flight_scans.hpp"
 #include "mapping_node.hpp"
+#include "mmh/common/local_map_codec.hpp"
 #include "mmh/mapping/mapper.hpp"
 
 namespace {
@@ -93,5 +94,51 @@ BENCHMARK(BM_MappingFlight)
     ->Args({20, 1, 4})
     ->Iterations(600)  // three passes over the ~200-frame flight
     ->Unit(benchmark::kMillisecond);
+
+// What a map receiver (arbiter, awareness, SOM, EAM) spends applying each LOCAL_MAP of the same
+// flight, with the planners' inflation: while it applies one, a plan request waits. Keyframes
+// (the whole window, decoded into a fresh grid) and deltas apart.
+void BM_LocalMapReceive(benchmark::State& state) {
+  const mmh::FlightScans& flight =
+      mmh::flightScans(state.range(0) / 100.0, mmh::sim::SensorKind::kDepth, 1);
+  mmh::mapping::MappingParams params;
+  mmh::mapping::Mapper mapper(params);
+  std::vector<mmh::local_map_t> messages;
+  int64_t utime = 1'000'000'000;
+  for (const mmh::sim::Scan& scan : flight.scans) {
+    mmh::mapping::ScanInput in;
+    in.sensor_position = scan.position;
+    in.max_range_m = scan.max_range_m;
+    in.xyz = scan.xyz.data();
+    in.num_points = scan.xyz.size() / 3;
+    utime += 66'667;
+    mapper.setVehiclePosition(scan.position);
+    messages.push_back(mmh::toLocalMap(mapper.processScan(in, utime).map));
+  }
+  auto receiver = std::make_unique<mmh::LocalMapReceiver>(0.3);  // map.inflation_m
+  std::vector<double> keyframe_ms, delta_ms;
+  size_t i = 0;
+  for (auto _ : state) {
+    if (i == messages.size()) {
+      state.PauseTiming();
+      receiver = std::make_unique<mmh::LocalMapReceiver>(0.3);
+      i = 0;
+      state.ResumeTiming();
+    }
+    const mmh::local_map_t& msg = messages[i++];
+    const double c0 = threadCpuMs();
+    receiver->apply(msg);
+    const double ms = threadCpuMs() - c0;
+    (msg.kind == mmh::local_map_t::KIND_KEYFRAME ? keyframe_ms : delta_ms).push_back(ms);
+    benchmark::DoNotOptimize(receiver->mapSeq());
+  }
+  state.counters["key_cpu_p50_ms"] = percentile(keyframe_ms, 0.5);
+  state.counters["key_cpu_p90_ms"] = percentile(keyframe_ms, 0.9);
+  state.counters["key_cpu_max_ms"] = percentile(keyframe_ms, 1.0);
+  state.counters["delta_cpu_p50_ms"] = percentile(delta_ms, 0.5);
+  state.counters["delta_cpu_max_ms"] = percentile(delta_ms, 1.0);
+}
+// Arg: density x 100.
+BENCHMARK(BM_LocalMapReceive)->Arg(0)->Arg(20)->Iterations(600)->Unit(benchmark::kMillisecond);
 
 }  // namespace

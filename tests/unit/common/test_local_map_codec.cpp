@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "mmh/common/local_map_codec.hpp"
@@ -60,6 +61,34 @@ TEST(LocalMapCodec, KeyframePlusDeltasRebuildTheSenderWindow) {
     ASSERT_TRUE(sameCells(rx.grid(), sender)) << "after delta " << seq;
     EXPECT_EQ(rx.lastChangedCells().size(), changes.size());
   }
+}
+
+TEST(LocalMapCodec, AKeyframeOnAMapItDiffersFromGivesWhatAFreshDecodeGives) {
+  // The receiver holds an old map of the same window size; the keyframe is of another origin and
+  // other cells. Only the differing cells are written, yet cells and inflation equal a fresh
+  // receiver's.
+  LocalMapReceiver rx(0.2);
+  ASSERT_EQ(rx.apply(mmh::makeKeyframe(randomGrid(Vector3i(0, 0, 0), 5), 1)),
+            LocalMapReceiver::Result::kApplied);
+  const VoxelGrid sender = randomGrid(Vector3i(3, -2, 1), 6);
+  const mmh::local_map_t keyframe = mmh::makeKeyframe(sender, 2);
+  ASSERT_EQ(rx.apply(keyframe), LocalMapReceiver::Result::kApplied);
+  LocalMapReceiver fresh(0.2);
+  ASSERT_EQ(fresh.apply(keyframe), LocalMapReceiver::Result::kApplied);
+  EXPECT_TRUE(sameCells(rx.grid(), sender));
+  EXPECT_TRUE(rx.lastWasKeyframe());
+  EXPECT_EQ(rx.mapSeq(), 2);
+  EXPECT_EQ(rx.grid().numOccupied(), fresh.grid().numOccupied());
+  const uint16_t* a = rx.grid().blockedCounts();
+  const uint16_t* b = fresh.grid().blockedCounts();
+  EXPECT_TRUE(std::equal(a, a + rx.grid().numCells(), b));
+  // A malformed keyframe changes nothing.
+  mmh::local_map_t bad = mmh::makeKeyframe(randomGrid(Vector3i(0, 0, 0), 7), 3);
+  bad.runs.resize(bad.runs.size() / 2);
+  bad.num_bytes = static_cast<int32_t>(bad.runs.size());
+  EXPECT_EQ(rx.apply(bad), LocalMapReceiver::Result::kRejected);
+  EXPECT_TRUE(sameCells(rx.grid(), sender));
+  EXPECT_EQ(rx.mapSeq(), 2);
 }
 
 TEST(LocalMapCodec, GapIsDetectedAndKeyframeRecovers) {

@@ -71,6 +71,7 @@ class LocalMapReceiver {
   int64_t gaps_ = 0;
   int64_t bridged_ = 0;
   std::vector<int64_t> last_changed_;
+  std::vector<uint8_t> keyframe_cells_;  // a keyframe's cells, decoded before they are applied
   bool last_was_keyframe_ = false;
 };
 
