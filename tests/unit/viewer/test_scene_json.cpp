@@ -50,6 +50,8 @@ TEST(SceneJson, DecisionNamesTriggersOutcomesAndModes) {
   m.committed_mode = plan_request_t::MODE_EAM;
   m.compute_us_eam = 1500;
   m.detail = "committed EAM";
+  m.header.utime = 5'012'500;
+  m.threat_seen_utime = 5'000'000;  // the danger it answers was seen 12.5 ms before
   const json j = decisionJson(m);
   EXPECT_EQ(j["trigger"], "collision");
   EXPECT_EQ(j["outcome"], "committed");
@@ -58,6 +60,9 @@ TEST(SceneJson, DecisionNamesTriggersOutcomesAndModes) {
   EXPECT_EQ(j["committed_mode"], "EAM");
   EXPECT_DOUBLE_EQ(j["compute_ms"]["EAM"].get<double>(), 1.5);
   EXPECT_EQ(j["detail"], "committed EAM");
+  EXPECT_DOUBLE_EQ(j["reaction_ms"].get<double>(), 12.5);
+  m.threat_seen_utime = 0;
+  EXPECT_DOUBLE_EQ(decisionJson(m)["reaction_ms"].get<double>(), -1.0);
 }
 
 TEST(SceneJson, HeartbeatCountersBecomeAnObject) {

@@ -138,7 +138,11 @@ json decisionJson(const arbiter_status_t& msg) {
           {"failures", msg.failures},
           {"position", vec3Json(msg.position)},
           {"local_target", vec3Json(msg.local_target)},
-          {"detail", msg.detail}};
+          {"detail", msg.detail},
+          // From the scan that showed the danger this decision answers; -1: it answers none.
+          {"reaction_ms", msg.threat_seen_utime > 0
+                              ? roundTo((msg.header.utime - msg.threat_seen_utime) * 1e-3, 1e-3)
+                              : -1.0}};
 }
 
 json heartbeatJson(const heartbeat_t& msg) {

@@ -71,6 +71,7 @@ export class Timeline {
         <tr><th>answered ok</th><td>${decision.modes_answered_ok}</td></tr>
         <tr><th>compute</th><td>FPM ${ms.FPM} ms, SOM ${ms.SOM} ms, EAM ${ms.EAM} ms</td></tr>
         <tr><th>request</th><td>${decision.request_id} → trajectory ${decision.trajectory_id}</td></tr>
+        ${decision.reaction_ms >= 0 ? `<tr><th>reaction</th><td>${decision.reaction_ms.toFixed(1)} ms after the scan that showed the danger</td></tr>` : ""}
         <tr><th>reason</th><td>${escapeHtml(decision.detail || "-")}</td></tr>
       </table>
       <ul class="answers">${answers}</ul>`;
