@@ -146,6 +146,14 @@ mission_status_t SimNode::makeMissionStatus() const {
   return msg;
 }
 
+void SimNode::reportNew(const char* counter, int total, int* seen,
+                        const std::function<std::string()>& what) {
+  if (total == *seen) return;
+  ctx_.increment(counter, total - *seen);
+  *seen = total;
+  logWarn(ctx_.service() + ": " + what());
+}
+
 void SimNode::step(bool publish_scans) {
   const sim::Simulator::StepResult r = sim_.step();
   ctx_.clock().observe(sim_.nowUtime());
@@ -156,38 +164,29 @@ void SimNode::step(bool publish_scans) {
     pointcloud_t cloud = makePointcloud(sim_.lastScan());
     ctx_.publish(channels::kPointcloud, cloud);
   }
-  if (sim_.vehicle().jumps() != jumps_seen_) {
-    // The committed trajectory did not start where the vehicle was: a planner/arbiter bug.
-    ctx_.increment("trajectory_jumps", sim_.vehicle().jumps() - jumps_seen_);
-    jumps_seen_ = sim_.vehicle().jumps();
-    logWarn(ctx_.service() + ": trajectory " + std::to_string(sim_.vehicle().activeTrajectoryId()) +
-            " does not start where the vehicle is: jumped " +
-            std::to_string(sim_.vehicle().lastJump()) + " m");
-  }
-  if (sim_.vehicle().lostCommits() != lost_commits_seen_) {
-    ctx_.increment("trajectories_lost", sim_.vehicle().lostCommits() - lost_commits_seen_);
-    lost_commits_seen_ = sim_.vehicle().lostCommits();
-    logWarn(ctx_.service() + ": " + std::to_string(lost_commits_seen_) +
-            " TRAJECTORY message(s) lost in transport so far (a gap in the trajectory ids; raise "
-            "the receive buffers, docs/operations.md)");
-  }
-  if (sim_.vehicle().jumpsAfterLoss() != jumps_after_loss_seen_) {
-    ctx_.increment("trajectory_jumps_after_loss",
-                   sim_.vehicle().jumpsAfterLoss() - jumps_after_loss_seen_);
-    jumps_after_loss_seen_ = sim_.vehicle().jumpsAfterLoss();
-    logWarn(ctx_.service() + ": trajectory " + std::to_string(sim_.vehicle().activeTrajectoryId()) +
-            " continues a lost one, not what the vehicle flew: stepped " +
-            std::to_string(sim_.vehicle().lastJump()) + " m");
-  }
-  if (sim_.vehicle().lateTakeovers() != late_takeovers_seen_) {
-    ctx_.increment("trajectories_late", sim_.vehicle().lateTakeovers() - late_takeovers_seen_);
-    late_takeovers_seen_ = sim_.vehicle().lateTakeovers();
-    logWarn(ctx_.service() + ": trajectory " + std::to_string(sim_.vehicle().activeTrajectoryId()) +
-            " arrived " + std::to_string(static_cast<int>(sim_.vehicle().lastLatenessS() * 1e3)) +
-            " ms after its start time (delivered late: the commit's lead was shorter than the "
-            "delay); taken over with a " +
-            std::to_string(sim_.vehicle().lastLateStepM()) + " m step");
-  }
+  const sim::Vehicle& v = sim_.vehicle();
+  const std::string id = std::to_string(v.activeTrajectoryId());
+  // The committed trajectory did not start where the vehicle was: a planner/arbiter bug.
+  reportNew("trajectory_jumps", v.jumps(), &jumps_seen_, [&] {
+    return "trajectory " + id + " does not start where the vehicle is: jumped " +
+           std::to_string(v.lastJump()) + " m";
+  });
+  reportNew("trajectories_lost", v.lostCommits(), &lost_commits_seen_, [&] {
+    return std::to_string(v.lostCommits()) +
+           " TRAJECTORY message(s) lost in transport so far (a gap in the trajectory ids; raise "
+           "the receive buffers, docs/operations.md)";
+  });
+  reportNew("trajectory_jumps_after_loss", v.jumpsAfterLoss(), &jumps_after_loss_seen_, [&] {
+    return "trajectory " + id + " continues a lost one, not what the vehicle flew: stepped " +
+           std::to_string(v.lastJump()) + " m";
+  });
+  reportNew("trajectories_late", v.lateTakeovers(), &late_takeovers_seen_, [&] {
+    return "trajectory " + id + " arrived " +
+           std::to_string(static_cast<int>(v.lastLatenessS() * 1e3)) +
+           " ms after its start time (delivered late: the commit's lead was shorter than the "
+           "delay); taken over with a " +
+           std::to_string(v.lastLateStepM()) + " m step";
+  });
   const sim::MissionMetrics& m = sim_.metrics();
   if (m.reached && !reported_reached_) {
     reported_reached_ = true;

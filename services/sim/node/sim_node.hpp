@@ -7,7 +7,9 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <string>
 
 #include "mmh/arbiter_status_t.hpp"
 #include "mmh/common/config.hpp"
@@ -47,6 +49,9 @@ class SimNode {
   void onGoal(const goal_t& msg);
   void onSetpoint(const setpoint_t& msg);
   void onArbiterStatus(const arbiter_status_t& msg);
+  // A vehicle counter that grew since *seen: counted in HEARTBEAT and logged with what().
+  void reportNew(const char* counter, int total, int* seen,
+                 const std::function<std::string()>& what);
 
   ServiceContext& ctx_;
   sim::Simulator sim_;

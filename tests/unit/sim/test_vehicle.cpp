@@ -14,6 +14,15 @@ using mmh::sim::Vehicle;
 namespace {
 constexpr int64_t kT0 = 1'000'000'000;
 constexpr int64_t kStep = 10'000;
+
+// Commits trajectory 1 (along x at 1 m/s from where the vehicle is) at kT0 and flies 1 s of it.
+std::shared_ptr<const mmh::Trajectory> flyOneSecondAlongX(Vehicle& v,
+                                                          std::vector<FlownPart>* flown) {
+  auto first = mmh::test::line(v.state().position, Vector3d(1, 0, 0), 10.0);
+  v.commit(first, kT0, 1);
+  for (int i = 1; i <= 100; ++i) v.advance(kT0 + i * kStep, flown);
+  return first;
+}
 }  // namespace
 
 TEST(Vehicle, HoldsPositionWithoutATrajectory) {
@@ -59,12 +68,9 @@ TEST(Vehicle, FollowsExactlyFromTheStartTimeAndHoldsAtTheEnd) {
 }
 
 TEST(Vehicle, SwitchesAtTheNewStartTimeWithoutAJump) {
-  const Vector3d start(0, 0, 1);
-  Vehicle v(start, 0.0, kT0, mmh::sim::SimParams{});
-  auto first = mmh::test::line(start, Vector3d(1, 0, 0), 10.0);
-  v.commit(first, kT0, 1);
+  Vehicle v(Vector3d(0, 0, 1), 0.0, kT0, mmh::sim::SimParams{});
   std::vector<FlownPart> flown;
-  for (int i = 1; i <= 100; ++i) v.advance(kT0 + i * kStep, &flown);  // 1 s along x
+  const auto first = flyOneSecondAlongX(v, &flown);
   // The planner sends a new trajectory that starts 0.255 s ahead, where the old one will be.
   const int64_t ts = kT0 + 1'255'000;
   auto second = mmh::test::line(first->position(1.255), Vector3d(0, 1, 0), 5.0);
@@ -93,12 +99,9 @@ TEST(Vehicle, SwitchesAtTheNewStartTimeWithoutAJump) {
 }
 
 TEST(Vehicle, ACommitDeliveredAfterItsStartIsTakenOverLateNotCountedAsAJump) {
-  const Vector3d start(0, 0, 1);
-  Vehicle v(start, 0.0, kT0, mmh::sim::SimParams{});
-  auto first = mmh::test::line(start, Vector3d(1, 0, 0), 10.0);
-  v.commit(first, kT0, 1);
+  Vehicle v(Vector3d(0, 0, 1), 0.0, kT0, mmh::sim::SimParams{});
   std::vector<FlownPart> flown;
-  for (int i = 1; i <= 100; ++i) v.advance(kT0 + i * kStep, &flown);  // 1 s along x
+  const auto first = flyOneSecondAlongX(v, &flown);
   // Continuous with the old trajectory at 0.95 s, but delivered at 1.0 s: the vehicle is already
   // 5 cm along x, where the new one (along y) is not.
   auto second = mmh::test::line(first->position(0.95), Vector3d(0, 1, 0), 5.0);
