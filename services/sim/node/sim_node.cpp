@@ -165,10 +165,11 @@ void SimNode::step(bool publish_scans) {
     ctx_.publish(channels::kPointcloud, cloud);
   }
   const sim::Vehicle& v = sim_.vehicle();
-  const std::string id = std::to_string(v.activeTrajectoryId());
+  // (Messages are built only when a counter grew: this runs every step.)
+  auto id = [&] { return std::to_string(v.activeTrajectoryId()); };
   // The committed trajectory did not start where the vehicle was: a planner/arbiter bug.
   reportNew("trajectory_jumps", v.jumps(), &jumps_seen_, [&] {
-    return "trajectory " + id + " does not start where the vehicle is: jumped " +
+    return "trajectory " + id() + " does not start where the vehicle is: jumped " +
            std::to_string(v.lastJump()) + " m";
   });
   reportNew("trajectories_lost", v.lostCommits(), &lost_commits_seen_, [&] {
@@ -177,11 +178,11 @@ void SimNode::step(bool publish_scans) {
            "the receive buffers, docs/operations.md)";
   });
   reportNew("trajectory_jumps_after_loss", v.jumpsAfterLoss(), &jumps_after_loss_seen_, [&] {
-    return "trajectory " + id + " continues a lost one, not what the vehicle flew: stepped " +
+    return "trajectory " + id() + " continues a lost one, not what the vehicle flew: stepped " +
            std::to_string(v.lastJump()) + " m";
   });
   reportNew("trajectories_late", v.lateTakeovers(), &late_takeovers_seen_, [&] {
-    return "trajectory " + id + " arrived " +
+    return "trajectory " + id() + " arrived " +
            std::to_string(static_cast<int>(v.lastLatenessS() * 1e3)) +
            " ms after its start time (delivered late: the commit's lead was shorter than the "
            "delay); taken over with a " +
