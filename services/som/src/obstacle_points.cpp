@@ -34,8 +34,9 @@ bool EscapeZone::frees(const VoxelGrid& grid, const Eigen::Vector3i& local,
 }
 
 bool BlockedMask::build(const VoxelGrid& grid, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
-                        const EscapeZone& escape) {
+                        const EscapeZone& escape, double check_inflation_m) {
   escape_faces_.clear();
+  check_faces_.clear();
   Eigen::Vector3i f, l;
   if (!cellRange(grid, lo, hi, &f, &l)) {
     n_.setZero();
@@ -103,7 +104,50 @@ bool BlockedMask::build(const VoxelGrid& grid, const Eigen::Vector3d& lo, const 
     for (uint8_t& m : mask_)
       if (m == 2) m = 0;
   }
+  if (check_inflation_m > 0.0) addCheckFaces(grid, f, check_inflation_m);
   return true;
+}
+
+void BlockedMask::addCheckFaces(const VoxelGrid& grid, const Eigen::Vector3i& first,
+                                double check_inflation_m) {
+  // A polytope face through a surface cell's centre leaves the cell's outer half inside the
+  // polytope. Where the arbiter's smaller margin still blocks that cell (centre within
+  // check_inflation_m of an occupied centre, as VoxelGrid::setInflationRadius counts), a
+  // trajectory there passes SOM's checks and is refused by the arbiter's, every round.
+  const int reach = static_cast<int>(std::floor(check_inflation_m / res_ + 1e-9));
+  const double limit_sq = std::pow(check_inflation_m / res_ + 1e-9, 2);
+  std::vector<Eigen::Vector3i> offsets;
+  for (int z = -reach; z <= reach; ++z)
+    for (int y = -reach; y <= reach; ++y)
+      for (int x = -reach; x <= reach; ++x)
+        if (x * x + y * y + z * z <= limit_sq) offsets.emplace_back(x, y, z);
+  const int64_t step[3] = {1, sy_, sz_};
+  for (int z = 1; z < n_.z() + 1; ++z)
+    for (int y = 1; y < n_.y() + 1; ++y)
+      for (int x = 1; x < n_.x() + 1; ++x) {
+        const int64_t i = z * sz_ + y * sy_ + x;
+        if (mask_[i] != 1) continue;
+        bool surface = false;
+        for (int axis = 0; axis < 3 && !surface; ++axis)
+          surface = mask_[i - step[axis]] == 0 || mask_[i + step[axis]] == 0;
+        if (!surface) continue;
+        const Eigen::Vector3i local = first + Eigen::Vector3i(x - 1, y - 1, z - 1);
+        bool near_occupied = false;
+        for (const Eigen::Vector3i& o : offsets)
+          if (grid.at(local + o) == Occupancy::kOccupied) {
+            near_occupied = true;
+            break;
+          }
+        if (!near_occupied) continue;
+        const Eigen::Vector3d c = centerOf(x - 1, y - 1, z - 1);
+        for (int axis = 0; axis < 3; ++axis)
+          for (int sign : {-1, 1}) {
+            if (mask_[i + sign * step[axis]] != 0) continue;
+            Eigen::Vector3d q = c;
+            q[axis] += sign * (0.5 * res_ - kFaceInset);
+            check_faces_.push_back(q);
+          }
+      }
 }
 
 void BlockedMask::surfacePoints(std::vector<Eigen::Vector3d>* out) const {
@@ -130,6 +174,7 @@ void BlockedMask::surfacePoints(std::vector<Eigen::Vector3d>* out) const {
     }
   }
   out->insert(out->end(), escape_faces_.begin(), escape_faces_.end());
+  out->insert(out->end(), check_faces_.begin(), check_faces_.end());
 }
 
 void BlockedMask::pointsInside(const Polytope& poly, std::vector<Eigen::Vector3d>* out) const {

@@ -249,3 +249,38 @@ TEST(ObstaclePoints, EscapeZoneFreesOnlyTheMarginAroundTheStart) {
     }
   }
 }
+
+TEST(ObstaclePoints, CellsTheArbitersMarginBlocksGiveTheirOuterFaces) {
+  const som_test::World w = som_test::pillars();
+  const mmh::VoxelGrid& g = *w.grid;  // inflated 0.3 m
+  mmh::VoxelGrid check = g;
+  check.setInflationRadius(0.25);
+  const Vector3d lo(2.0, -1.5, 0.3), hi(6.0, 1.5, 2.0);
+  std::vector<Vector3d> plain, with_faces;
+  mmh::som::BlockedMask mask;
+  ASSERT_TRUE(mask.build(g, lo, hi, {}));
+  mask.surfacePoints(&plain);
+  ASSERT_TRUE(mask.build(g, lo, hi, {}, 0.25));
+  mask.surfacePoints(&with_faces);
+  // Brute force: one point per face between a surface cell that the 0.25 m margin blocks and an
+  // unblocked 6-neighbour, a hair inside the blocked cell, on that face.
+  size_t expected = 0;
+  for (int64_t i = 0; i < g.numCells(); ++i) {
+    const Eigen::Vector3i c = g.localFromLinear(i);
+    if (!g.isBlockedLinear(i) || !check.isBlocked(c) ||
+        !som_test::inBox(g.centerOfLocal(c), lo, hi))
+      continue;
+    for (int d = 0; d < 3; ++d)
+      for (int s : {-1, 1}) expected += !g.isBlocked(c + s * Eigen::Vector3i::Unit(d));
+  }
+  ASSERT_GT(expected, 50u);
+  ASSERT_EQ(with_faces.size(), plain.size() + expected);
+  for (size_t k = plain.size(); k < with_faces.size(); ++k) {
+    const Vector3d& q = with_faces[k];
+    EXPECT_TRUE(check.isBlockedPoint(q));
+    // On a cell face: one coordinate a hair from a multiple of the cell size.
+    const Vector3d r = q / g.resolution();
+    const double to_face = (r - r.array().round().matrix()).cwiseAbs().minCoeff();
+    EXPECT_LT(to_face, 1e-4);
+  }
+}

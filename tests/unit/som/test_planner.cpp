@@ -203,6 +203,7 @@ TEST(SomPlanner, ParamsFromConfig) {
 vehicle: {radius_m: 0.15, max_vel_mps: 2.5, max_acc_mps2: 1.5}
 geofence: {min_m: [-10, -10, 0.5], max_m: [10, 10, 2.5]}
 som: {time_weight: 500.0, samples_per_piece: 6, corridor_iterations: 3}
+arbiter: {check_inflation_m: 0.2}
 )");
   const auto p = mmh::som::loadSomParams(config);
   EXPECT_EQ(p.max_vel_mps, 2.5);
@@ -211,6 +212,7 @@ som: {time_weight: 500.0, samples_per_piece: 6, corridor_iterations: 3}
   EXPECT_EQ(p.optimizer.time_weight, 500.0);
   EXPECT_EQ(p.optimizer.samples_per_piece, 6);
   EXPECT_EQ(p.corridor.iterations, 3);
+  EXPECT_EQ(p.corridor.check_inflation_m, 0.2);  // the arbiter's, shared
   EXPECT_EQ(p.optimizer.max_evaluations, mmh::som::OptimizerParams().max_evaluations);
   EXPECT_THROW(mmh::som::loadSomParams(mmh::Config::fromString(R"(
 vehicle: {max_vel_mps: 3.0, max_acc_mps2: 2.0}

@@ -27,6 +27,9 @@ struct CorridorParams {
   // A junction point must be at least this far inside both polytopes it joins.
   double junction_margin_m = 0.1;
   int max_polytopes = 48;
+  // The arbiter's check inflation (arbiter.check_inflation_m): cells within it of an occupied
+  // cell are kept out of the polytopes entirely, not only up to their centres (0: off).
+  double check_inflation_m = 0.25;
 };
 
 struct OptimizerParams {
