@@ -44,10 +44,8 @@ double knownSpaceHorizonM(double start_speed_mps, const ArbiterParams& params) {
 }
 
 std::optional<double> firstUnknownWithin(const Trajectory& t, const VoxelGrid& grid,
-                                         double horizon_m, double radius_m, double width_from_m,
-                                         double step_s) {
+                                         double horizon_m, double radius_m, double step_s) {
   const Eigen::Vector3d start = t.position(0.0);
-  const Eigen::Vector3i start_cell = grid.localIndexOf(start);
   const double res = grid.resolution();
   const int reach = static_cast<int>(std::ceil(radius_m / res));
   // Squared distance from p to the nearest point of the cell `local`.
@@ -55,9 +53,6 @@ std::optional<double> firstUnknownWithin(const Trajectory& t, const VoxelGrid& g
     const Eigen::Vector3d lo = grid.centerOfLocal(local).array() - 0.5 * res;
     const Eigen::Vector3d gap = (lo - p).cwiseMax(p - lo - Eigen::Vector3d::Constant(res));
     return gap.cwiseMax(0.0).squaredNorm();
-  };
-  auto unknown = [&](const Eigen::Vector3i& cell) {
-    return grid.inWindow(cell) && grid.at(cell) == Occupancy::kUnknown;
   };
   const double radius_sq = radius_m * radius_m;
   double travelled = 0.0;
@@ -67,14 +62,13 @@ std::optional<double> firstUnknownWithin(const Trajectory& t, const VoxelGrid& g
     travelled += (p - previous).norm();
     previous = p;
     const Eigen::Vector3i centre = grid.localIndexOf(p);
-    // The vehicle's own cell: where it is now, seen or not.
-    if (centre != start_cell && unknown(centre)) return s;
-    if (travelled < width_from_m) continue;
     for (int dy = -reach; dy <= reach; ++dy)
       for (int dx = -reach; dx <= reach; ++dx) {
         const Eigen::Vector3i cell = centre + Eigen::Vector3i(dx, dy, 0);
-        if (!unknown(cell) || cellDistanceSq(cell, p) > radius_sq) continue;
-        if (cellDistanceSq(cell, start) <= radius_sq) continue;  // the airframe is there now
+        if (!grid.inWindow(cell) || grid.at(cell) != Occupancy::kUnknown) continue;
+        if (cellDistanceSq(cell, p) > radius_sq) continue;
+        // The airframe's own cells at the start: where it is now, seen or not.
+        if (cellDistanceSq(cell, start) <= radius_sq) continue;
         return s;
       }
   }
@@ -88,7 +82,7 @@ std::optional<double> firstUnknownWithinReach(const Trajectory& t, double elapse
   const double horizon_m = t.arcLength(elapsed_s, lead_end_s) +
                            knownSpaceHorizonM(t.velocity(lead_end_s).norm(), params);
   const auto at = firstUnknownWithin(t.tail(elapsed_s), grid, horizon_m, params.vehicle_radius_m,
-                                     params.known_space_margin_m, params.check_step_s);
+                                     params.check_step_s);
   if (!at) return std::nullopt;
   return elapsed_s + *at;
 }
@@ -140,8 +134,8 @@ bool checkAnswer(const Trajectory& t, int64_t answer_start_utime, const Requeste
   // The stop from the start's speed must end in space the sensor has seen.
   if (grid) {
     const double horizon_m = knownSpaceHorizonM(start.velocity.norm(), params);
-    if (const auto at = firstUnknownWithin(t, *grid, horizon_m, params.vehicle_radius_m,
-                                           params.known_space_margin_m, params.check_step_s)) {
+    if (const auto at =
+            firstUnknownWithin(t, *grid, horizon_m, params.vehicle_radius_m, params.check_step_s)) {
       char text[128];
       std::snprintf(text, sizeof(text), "enters unmapped space %.2f s from its start", *at);
       return fail(text);
