@@ -1,7 +1,6 @@
 #include "mmh/arbiter/answer_check.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 
 #include "mmh/common/collision_check.hpp"
@@ -44,33 +43,19 @@ double knownSpaceHorizonM(double start_speed_mps, const ArbiterParams& params) {
 }
 
 std::optional<double> firstUnknownWithin(const Trajectory& t, const VoxelGrid& grid,
-                                         double horizon_m, double radius_m, double step_s) {
+                                         double horizon_m, double step_s) {
   const Eigen::Vector3d start = t.position(0.0);
-  const double res = grid.resolution();
-  const int reach = static_cast<int>(std::ceil(radius_m / res));
-  // Squared distance from p to the nearest point of the cell `local`.
-  auto cellDistanceSq = [&](const Eigen::Vector3i& local, const Eigen::Vector3d& p) {
-    const Eigen::Vector3d lo = grid.centerOfLocal(local).array() - 0.5 * res;
-    const Eigen::Vector3d gap = (lo - p).cwiseMax(p - lo - Eigen::Vector3d::Constant(res));
-    return gap.cwiseMax(0.0).squaredNorm();
-  };
-  const double radius_sq = radius_m * radius_m;
+  const Eigen::Vector3i start_cell = grid.localIndexOf(start);
   double travelled = 0.0;
   Eigen::Vector3d previous = start;
   for (double s = 0.0; s <= t.duration() && travelled <= horizon_m; s += step_s) {
     const Eigen::Vector3d p = t.position(s);
     travelled += (p - previous).norm();
     previous = p;
-    const Eigen::Vector3i centre = grid.localIndexOf(p);
-    for (int dy = -reach; dy <= reach; ++dy)
-      for (int dx = -reach; dx <= reach; ++dx) {
-        const Eigen::Vector3i cell = centre + Eigen::Vector3i(dx, dy, 0);
-        if (!grid.inWindow(cell) || grid.at(cell) != Occupancy::kUnknown) continue;
-        if (cellDistanceSq(cell, p) > radius_sq) continue;
-        // The airframe's own cells at the start: where it is now, seen or not.
-        if (cellDistanceSq(cell, start) <= radius_sq) continue;
-        return s;
-      }
+    const Eigen::Vector3i cell = grid.localIndexOf(p);
+    // The vehicle's own cell: where it is now, seen or not.
+    if (cell == start_cell || !grid.inWindow(cell)) continue;
+    if (grid.at(cell) == Occupancy::kUnknown) return s;
   }
   return std::nullopt;
 }
@@ -81,8 +66,7 @@ std::optional<double> firstUnknownWithinReach(const Trajectory& t, double elapse
   const double lead_end_s = std::min(t.duration(), elapsed_s + lead_s);
   const double horizon_m = t.arcLength(elapsed_s, lead_end_s) +
                            knownSpaceHorizonM(t.velocity(lead_end_s).norm(), params);
-  const auto at = firstUnknownWithin(t.tail(elapsed_s), grid, horizon_m, params.vehicle_radius_m,
-                                     params.check_step_s);
+  const auto at = firstUnknownWithin(t.tail(elapsed_s), grid, horizon_m, params.check_step_s);
   if (!at) return std::nullopt;
   return elapsed_s + *at;
 }
@@ -134,8 +118,7 @@ bool checkAnswer(const Trajectory& t, int64_t answer_start_utime, const Requeste
   // The stop from the start's speed must end in space the sensor has seen.
   if (grid) {
     const double horizon_m = knownSpaceHorizonM(start.velocity.norm(), params);
-    if (const auto at =
-            firstUnknownWithin(t, *grid, horizon_m, params.vehicle_radius_m, params.check_step_s)) {
+    if (const auto at = firstUnknownWithin(t, *grid, horizon_m, params.check_step_s)) {
       char text[128];
       std::snprintf(text, sizeof(text), "enters unmapped space %.2f s from its start", *at);
       return fail(text);

@@ -53,46 +53,21 @@ TEST(AnswerCheck, TheKnownSpaceHorizonIsTheStoppingDistancePlusTheMargin) {
 TEST(AnswerCheck, UnmappedSpaceWithinTheStopIsFoundAndBeyondItIsNot) {
   VoxelGrid g = mappedFreeGrid();
   const Trajectory from_rest = straight(0.0, 1.0, 3.0);  // 4.5 m
-  EXPECT_FALSE(firstUnknownWithin(from_rest, g, 0.3, 0.0, 0.01));
+  EXPECT_FALSE(firstUnknownWithin(from_rest, g, 0.3, 0.01));
   markUnknownSlab(g, 0.2, 0.4);  // right ahead of the start
-  const auto at = firstUnknownWithin(from_rest, g, 0.3, 0.0, 0.01);
+  const auto at = firstUnknownWithin(from_rest, g, 0.3, 0.01);
   ASSERT_TRUE(at);
   EXPECT_NEAR(*at, std::sqrt(2.0 * 0.2), 0.02);  // x = t^2 / 2 reaches the slab at 0.2 m
   // Farther than the horizon: space the sensor will see on the way.
   VoxelGrid far = mappedFreeGrid();
   markUnknownSlab(far, 2.0, 2.2);
-  EXPECT_FALSE(firstUnknownWithin(from_rest, far, 0.3, 0.0, 0.01));
+  EXPECT_FALSE(firstUnknownWithin(from_rest, far, 0.3, 0.01));
   // At 3 m/s the stop needs 2.25 m: the same slab is within it.
-  EXPECT_TRUE(firstUnknownWithin(straight(3.0, 0.0, 2.0), far, 2.55, 0.0, 0.01));
+  EXPECT_TRUE(firstUnknownWithin(straight(3.0, 0.0, 2.0), far, 2.55, 0.01));
   // The start's own cell does not count (the vehicle is there, seen or not).
   VoxelGrid own = mappedFreeGrid();
   own.set(own.localIndexOf(Eigen::Vector3d(0.0, 0.0, 1.2)), Occupancy::kUnknown);
-  EXPECT_FALSE(firstUnknownWithin(from_rest, own, 0.3, 0.0, 0.01));
-}
-
-TEST(AnswerCheck, UnmappedSpaceBesideThePathCountsWhenTheAirframeWouldTouchIt) {
-  // A column of unknown cells 0.1-0.2 m beside the path (y), at x = 1.0-1.1 m: the centre
-  // line stays in seen space, a 0.15 m airframe does not.
-  VoxelGrid g = mappedFreeGrid();
-  for (int z = 0; z < 30; ++z)
-    g.set(g.localIndexOf(Eigen::Vector3d(1.05, 0.15, (z + 0.5) * 0.1)), Occupancy::kUnknown);
-  const Trajectory cruise = straight(2.0, 0.0, 1.5);  // 3 m along +x
-  EXPECT_FALSE(firstUnknownWithin(cruise, g, 3.0, 0.0, 0.01));
-  const auto at = firstUnknownWithin(cruise, g, 3.0, 0.15, 0.01);
-  ASSERT_TRUE(at);
-  // The airframe reaches the cell's near face (x = 1.0) when the centre is at x = 1.0 - sqrt(0.15^2
-  // - 0.1^2) = 0.888 m.
-  EXPECT_NEAR(*at, (1.0 - std::sqrt(0.15 * 0.15 - 0.1 * 0.1)) / 2.0, 0.01);
-  // Cells 0.2 m beside the path are out of the airframe's reach.
-  VoxelGrid clear = mappedFreeGrid();
-  for (int z = 0; z < 30; ++z)
-    clear.set(clear.localIndexOf(Eigen::Vector3d(1.05, 0.25, (z + 0.5) * 0.1)),
-              Occupancy::kUnknown);
-  EXPECT_FALSE(firstUnknownWithin(cruise, clear, 3.0, 0.15, 0.01));
-  // Unknown cells the airframe touches where it is now do not count: it is already there.
-  VoxelGrid own = mappedFreeGrid();
-  own.set(own.localIndexOf(Eigen::Vector3d(-0.05, 0.1, 1.2)), Occupancy::kUnknown);
-  EXPECT_FALSE(firstUnknownWithin(cruise, own, 3.0, 0.15, 0.01));
+  EXPECT_FALSE(firstUnknownWithin(from_rest, own, 0.3, 0.01));
 }
 
 TEST(AnswerCheck, AnAnswerWhoseStopWouldEndInUnmappedSpaceIsRefused) {
@@ -107,12 +82,10 @@ TEST(AnswerCheck, AnAnswerWhoseStopWouldEndInUnmappedSpaceIsRefused) {
   VoxelGrid g = mappedFreeGrid();
   std::string why;
   EXPECT_TRUE(checkAnswer(answer, requested.start_utime, requested, &g, p, &why)) << why;
-  // Cells from x = 0.4 m: the airframe (0.15 m) at the end of the stop from rest (0.3 m) touches
-  // them.
-  markUnknownSlab(g, 0.4, 0.7);
+  markUnknownSlab(g, 0.2, 0.4);
   EXPECT_FALSE(checkAnswer(answer, requested.start_utime, requested, &g, p, &why));
   EXPECT_NE(why.find("enters unmapped space"), std::string::npos) << why;
-  p.known_space_margin_m = 0.1;  // a stop from rest whose airframe stays before the slab
+  p.known_space_margin_m = 0.1;  // a stop from rest that ends before the slab
   EXPECT_TRUE(checkAnswer(answer, requested.start_utime, requested, &g, p, &why)) << why;
 }
 
@@ -121,7 +94,6 @@ TEST(AnswerCheck, TheCommittedTrajectorysReachIsTheLeadThenTheStopFromTheSpeedTh
   p.max_acc_mps2 = 2.0;
   p.known_space_margin_m = 0.3;
   p.check_step_s = 0.01;
-  p.vehicle_radius_m = 0.0;  // the centre line; the airframe's width is tested above
   // 3 m/s along +x for 4 s; 1 s flown (x = 3 m). The reach: 0.5 s of lead (1.5 m), then the
   // stop from 3 m/s (2.25 m) and the margin: up to x = 7.05 m.
   const Trajectory cruise = straight(3.0, 0.0, 4.0);

@@ -4,8 +4,7 @@
 // the check margin may leave it, outwards and near the start only) - and the stretch in which the
 // vehicle could stop from its start speed (plus a margin) must lie in space the sensor has seen:
 // planners treat unknown space as free, which is safe far ahead but not where the vehicle will be
-// before it could brake (sideways, backwards or down, where a forward camera never looked). The
-// rule covers the airframe's width, not only the centre line.
+// before it could brake (sideways, backwards or down, where a forward camera never looked).
 #pragma once
 
 #include <optional>
@@ -27,14 +26,10 @@ struct RequestedStart {
 // distance from start_speed_mps at max_acc_mps2 plus known_space_margin_m.
 double knownSpaceHorizonM(double start_speed_mps, const ArbiterParams& params);
 
-// Time of the first sample (every step_s) within horizon_m of path length from the start at
-// which the airframe (radius_m) touches a cell of the sample's voxel layer that is unknown in
-// `grid`: the width must be seen, not only the centre line, or a trunk beside the path stays
-// unseen until it is too late. Only the layer: sensors' beam spacing leaves free cells above and
-// below unseen. Cells the airframe touches at the start and cells outside the window do not
-// count.
+// Time of the first sample (every step_s) within horizon_m of path length from the start whose
+// cell is unknown in `grid` (the start's own cell and cells outside the window excepted).
 std::optional<double> firstUnknownWithin(const Trajectory& t, const VoxelGrid& grid,
-                                         double horizon_m, double radius_m, double step_s);
+                                         double horizon_m, double step_s);
 
 // The same rule for the committed trajectory `t` while it is flown (`elapsed_s` of it flown):
 // if no plan replaced it, the vehicle would follow it for lead_s more and then brake along it.
