@@ -24,6 +24,18 @@ namespace {
 constexpr double kFaceInset = 1e-6;  // m
 }  // namespace
 
+bool withinInflation(const VoxelGrid& grid, const Eigen::Vector3i& local, double radius_m) {
+  const double r = radius_m / grid.resolution() + 1e-9;  // in cells
+  const int reach = static_cast<int>(std::floor(r));
+  for (int z = -reach; z <= reach; ++z)
+    for (int y = -reach; y <= reach; ++y)
+      for (int x = -reach; x <= reach; ++x)
+        if (x * x + y * y + z * z <= r * r &&
+            grid.at(local + Eigen::Vector3i(x, y, z)) == Occupancy::kOccupied)
+          return true;
+  return false;
+}
+
 bool EscapeZone::frees(const VoxelGrid& grid, const Eigen::Vector3i& local,
                        const Eigen::Vector3d& c) const {
   if (radius <= 0.0 || grid.at(local) == Occupancy::kOccupied) return false;
@@ -111,16 +123,8 @@ bool BlockedMask::build(const VoxelGrid& grid, const Eigen::Vector3d& lo, const 
 void BlockedMask::addCheckFaces(const VoxelGrid& grid, const Eigen::Vector3i& first,
                                 double check_inflation_m) {
   // A polytope face through a surface cell's centre leaves the cell's outer half inside the
-  // polytope. Where the arbiter's smaller margin still blocks that cell (centre within
-  // check_inflation_m of an occupied centre, as VoxelGrid::setInflationRadius counts), a
-  // trajectory there passes SOM's checks and is refused by the arbiter's, every round.
-  const int reach = static_cast<int>(std::floor(check_inflation_m / res_ + 1e-9));
-  const double limit_sq = std::pow(check_inflation_m / res_ + 1e-9, 2);
-  std::vector<Eigen::Vector3i> offsets;
-  for (int z = -reach; z <= reach; ++z)
-    for (int y = -reach; y <= reach; ++y)
-      for (int x = -reach; x <= reach; ++x)
-        if (x * x + y * y + z * z <= limit_sq) offsets.emplace_back(x, y, z);
+  // polytope; where the arbiter's smaller margin still blocks that cell, the faces towards the
+  // unblocked neighbours keep the polytopes out of it.
   const int64_t step[3] = {1, sy_, sz_};
   for (int z = 1; z < n_.z() + 1; ++z)
     for (int y = 1; y < n_.y() + 1; ++y)
@@ -132,13 +136,7 @@ void BlockedMask::addCheckFaces(const VoxelGrid& grid, const Eigen::Vector3i& fi
           surface = mask_[i - step[axis]] == 0 || mask_[i + step[axis]] == 0;
         if (!surface) continue;
         const Eigen::Vector3i local = first + Eigen::Vector3i(x - 1, y - 1, z - 1);
-        bool near_occupied = false;
-        for (const Eigen::Vector3i& o : offsets)
-          if (grid.at(local + o) == Occupancy::kOccupied) {
-            near_occupied = true;
-            break;
-          }
-        if (!near_occupied) continue;
+        if (!withinInflation(grid, local, check_inflation_m)) continue;
         const Eigen::Vector3d c = centerOf(x - 1, y - 1, z - 1);
         for (int axis = 0; axis < 3; ++axis)
           for (int sign : {-1, 1}) {

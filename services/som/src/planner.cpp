@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <optional>
 
 #include "mmh/common/collision_check.hpp"
 
@@ -123,44 +124,64 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
       return finish(PlanStatus::kNoPath, std::string("A*: ") + toString(found.status));
   }
 
-  // --- corridor ---------------------------------------------------------------------------
-  step.restart();
+  // --- corridor, optimisation, verification ------------------------------------------------
   EscapeZone escape;
   if (start_in_margin) {
     escape.center = start.position;
     escape.radius = p.start_escape_radius_m;
     escape.min_distance = escape_min_distance;
   }
-  std::string why;
-  const bool corridor_ok =
-      corridor_builder_.build(grid, out.path, bound_lo, bound_hi, escape, p.corridor, &out.corridor,
-                              &why, start.velocity, p.max_acc_mps2);
-  step.stop(&out.timings.corridor);
-  if (!corridor_ok) return finish(PlanStatus::kCorridor, why);
-
-  // --- optimisation -----------------------------------------------------------------------
-  step.restart();
-  OptimizerOutput opt;
-  const bool opt_ok = optimizer_.setup(start, target, out.corridor) && optimizer_.optimize(&opt);
-  step.stop(&out.timings.optimize);
-  out.optimizer_evaluations = opt.evaluations;
-  out.cost_total = opt.cost_total;
-  out.cost_control = opt.cost_control;
-  out.cost_time = opt.cost_time;
-  out.cost_penalty = opt.cost_penalty;
-  if (!opt_ok)
-    return finish(PlanStatus::kOptimizer,
-                  opt.message.empty() ? std::string("optimizer failed") : opt.message);
-  out.trajectory = std::move(opt.trajectory);
-  out.piece_polytope = std::move(opt.piece_polytope);
-
-  // --- verification -----------------------------------------------------------------------
-  step.restart();
-  out.verify =
-      verifyTrajectory(out.trajectory, start, target, grid, out.corridor, out.piece_polytope,
-                       p.max_vel_mps, p.max_acc_mps2, p.verify, escape_min_distance);
-  step.stop(&out.timings.verify);
-  if (!out.verify.ok) return finish(PlanStatus::kVerify, out.verify.failure);
+  // Corridor, optimisation and verification; with check_inflation_m > 0 the corridor keeps out
+  // whole the cells the arbiter's check margin blocks (obstacle_points.hpp). Tried first without
+  // them (a wider corridor, fewer infeasible answers from fast starts), again with them when the
+  // verified answer runs through such a cell: the arbiter would refuse it, and from the same
+  // state SOM would give the same answer every round.
+  auto corridorToVerified = [&](double check_inflation_m) -> std::optional<PlanStatus> {
+    CorridorParams corridor_params = p.corridor;
+    corridor_params.check_inflation_m = check_inflation_m;
+    step.restart();
+    std::string why;
+    const bool corridor_ok =
+        corridor_builder_.build(grid, out.path, bound_lo, bound_hi, escape, corridor_params,
+                                &out.corridor, &why, start.velocity, p.max_acc_mps2);
+    step.stop(&out.timings.corridor);
+    if (!corridor_ok) {
+      out.detail = why;
+      return PlanStatus::kCorridor;
+    }
+    step.restart();
+    OptimizerOutput opt;
+    const bool opt_ok = optimizer_.setup(start, target, out.corridor) && optimizer_.optimize(&opt);
+    step.stop(&out.timings.optimize);
+    out.optimizer_evaluations += opt.evaluations;
+    out.cost_total = opt.cost_total;
+    out.cost_control = opt.cost_control;
+    out.cost_time = opt.cost_time;
+    out.cost_penalty = opt.cost_penalty;
+    if (!opt_ok) {
+      out.detail = opt.message.empty() ? std::string("optimizer failed") : opt.message;
+      return PlanStatus::kOptimizer;
+    }
+    out.trajectory = std::move(opt.trajectory);
+    out.piece_polytope = std::move(opt.piece_polytope);
+    step.restart();
+    out.verify =
+        verifyTrajectory(out.trajectory, start, target, grid, out.corridor, out.piece_polytope,
+                         p.max_vel_mps, p.max_acc_mps2, p.verify, escape_min_distance);
+    step.stop(&out.timings.verify);
+    if (!out.verify.ok) {
+      out.detail = out.verify.failure;
+      return PlanStatus::kVerify;
+    }
+    return std::nullopt;
+  };
+  std::optional<PlanStatus> failed = corridorToVerified(0.0);
+  if (!failed && p.corridor.check_inflation_m > 0.0 &&
+      entersCheckMargin(out.trajectory, grid, p.corridor.check_inflation_m)) {
+    ++out.check_margin_retries;
+    failed = corridorToVerified(p.corridor.check_inflation_m);
+  }
+  if (failed) return finish(*failed, out.detail);
   return finish(PlanStatus::kOk, "");
 }
 

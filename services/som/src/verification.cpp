@@ -1,8 +1,10 @@
 #include "mmh/som/verification.hpp"
 
 #include "mmh/common/trajectory_verifier.hpp"
+#include "mmh/som/obstacle_points.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <sstream>
 
@@ -71,6 +73,25 @@ VerifyReport verifyTrajectory(const Trajectory& traj, const KinematicState& star
   if (!v.ok) return fail(v.why);
   r.ok = true;
   return r;
+}
+
+bool entersCheckMargin(const Trajectory& traj, const VoxelGrid& grid, double check_inflation_m,
+                       double step_s) {
+  if (traj.empty()) return false;
+  bool leaving_start = true;
+  Eigen::Vector3i last(INT32_MIN, INT32_MIN, INT32_MIN);
+  for (double s = 0.0; s <= traj.duration() + 0.5 * step_s; s += step_s) {
+    const Eigen::Vector3i cell = grid.localIndexOf(traj.position(std::min(s, traj.duration())));
+    if (cell == last) continue;
+    last = cell;
+    const bool blocked = withinInflation(grid, cell, check_inflation_m);
+    if (leaving_start) {
+      leaving_start = blocked;
+      continue;
+    }
+    if (blocked) return true;
+  }
+  return false;
 }
 
 }  // namespace mmh::som

@@ -13,6 +13,7 @@
 #include "mmh/common/config.hpp"
 #include "mmh/common/vehicle_limits.hpp"
 #include "mmh/som/planner.hpp"
+#include "mmh/som/verification.hpp"
 #include "som_test_worlds.hpp"
 
 using Eigen::Vector3d;
@@ -263,4 +264,32 @@ TEST(SomPlanner, EscapeFromTheMarginShellKeepsToTheFreedCells) {
   ASSERT_FALSE(check.isBlockedPoint(w.start));
   EXPECT_FALSE(mmh::firstCollisionTime(check, out.trajectory, 0.0, out.trajectory.duration()))
       << "enters the 0.25 m margin";
+}
+
+// The arbiter's check margin (cells whose centres lie within 0.25 m of an occupied centre) on a
+// hand-made grid: one occupied cell at the origin's column.
+TEST(SomVerification, EnteringTheArbitersCheckMarginIsFoundAfterTheStartLeavesIt) {
+  mmh::VoxelGrid grid(0.1, Eigen::Vector3i(-20, -20, 0), Eigen::Vector3i(40, 40, 30));
+  for (int64_t i = 0; i < grid.numCells(); ++i) grid.setLinear(i, mmh::Occupancy::kFree);
+  grid.set(grid.localIndexOf(Vector3d(0.05, 0.05, 1.25)), mmh::Occupancy::kOccupied);
+  auto line = [](const Vector3d& from, const Vector3d& to) {
+    mmh::Piece p;
+    p.duration = 1.0;
+    p.coeffs.col(0) = from;
+    p.coeffs.col(1) = to - from;
+    return mmh::Trajectory({p});
+  };
+  // Past the cell 0.2 m to its side (cell centres 0.2 m apart): inside the margin.
+  EXPECT_TRUE(mmh::som::entersCheckMargin(
+      line(Vector3d(-1.0, 0.25, 1.25), Vector3d(1.0, 0.25, 1.25)), grid, 0.25));
+  // 0.3 m to its side: outside.
+  EXPECT_FALSE(mmh::som::entersCheckMargin(
+      line(Vector3d(-1.0, 0.35, 1.25), Vector3d(1.0, 0.35, 1.25)), grid, 0.25));
+  // A start inside the margin may leave it, but not come back.
+  EXPECT_FALSE(mmh::som::entersCheckMargin(
+      line(Vector3d(0.05, 0.25, 1.25), Vector3d(0.05, 1.0, 1.25)), grid, 0.25));
+  // Out of it and back in (0.2 m beside the cell): found.
+  mmh::Trajectory out_and_back = line(Vector3d(0.05, 0.25, 1.25), Vector3d(0.05, 1.0, 1.25));
+  out_and_back.append(line(Vector3d(0.05, 1.0, 1.25), Vector3d(0.25, 0.05, 1.25)).pieces()[0]);
+  EXPECT_TRUE(mmh::som::entersCheckMargin(out_and_back, grid, 0.25));
 }

@@ -39,6 +39,9 @@ struct PlanOutput {
   std::vector<int> piece_polytope;
   double cost_total = 0.0, cost_control = 0.0, cost_time = 0.0, cost_penalty = 0.0;
   int optimizer_evaluations = 0;
+  // Plans made again with the check-margin faces (the first ran through a cell the arbiter's
+  // check margin blocks; see Planner::plan).
+  int check_margin_retries = 0;
   int64_t astar_expansions = 0;
   VerifyReport verify;
   PlanTimings timings;
