@@ -298,7 +298,8 @@ std::vector<KeySpec> buildKeys() {
       real("arbiter.start_escape_radius_m", 0.0, 5.0, "0.5",
            "An answer starting in the check margin must leave it within this distance"),
       real("arbiter.check_inflation_m", 0.0, 5.0, "0.25",
-           "Inflation of the arbiter's own collision checks (<= map.inflation_m)"),
+           "Inflation of the arbiter's own collision checks (<= map.inflation_m); SOM keeps "
+           "answers out of the cells it blocks"),
       real("arbiter.answer_limit_tolerance", 0.0, 0.5, "0.05",
            "Accepted relative excess of an answer over v_max / a_max"),
       real("arbiter.max_answer_duration_s", 1.0, 3600.0, "120.0",
