@@ -77,14 +77,19 @@ void VoxelGrid::rebuildInflation() {
 void VoxelGrid::setInflationRadius(double radius_m) {
   if (!(radius_m >= 0.0)) throw std::invalid_argument("VoxelGrid: negative inflation radius");
   inflation_radius_ = radius_m;
-  kernel_.clear();
-  const int r = static_cast<int>(std::floor(radius_m / resolution_ + 1e-9));
-  const double r2 = (radius_m / resolution_) * (radius_m / resolution_) + 1e-9;
+  kernel_ = offsetsWithin(radius_m, resolution_);
+  if (valid()) rebuildInflation();
+}
+
+std::vector<Eigen::Vector3i> VoxelGrid::offsetsWithin(double radius_m, double resolution_m) {
+  std::vector<Eigen::Vector3i> offsets;
+  const int r = static_cast<int>(std::floor(radius_m / resolution_m + 1e-9));
+  const double r2 = (radius_m / resolution_m) * (radius_m / resolution_m) + 1e-9;
   for (int z = -r; z <= r; ++z)
     for (int y = -r; y <= r; ++y)
       for (int x = -r; x <= r; ++x)
-        if (x * x + y * y + z * z <= r2) kernel_.emplace_back(x, y, z);
-  if (valid()) rebuildInflation();
+        if (x * x + y * y + z * z <= r2) offsets.emplace_back(x, y, z);
+  return offsets;
 }
 
 namespace {

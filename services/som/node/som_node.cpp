@@ -47,10 +47,11 @@ void SomNode::onPlanRequest(const plan_request_t& req) {
   char split[240];
   std::snprintf(split, sizeof(split),
                 "A* %.2f ms, corridor %.2f ms (%d polytopes), optimisation %.2f ms (%d evals), "
-                "verification %.2f ms",
+                "verification %.2f ms%s",
                 t.astar.wall_us * 1e-3, t.corridor.wall_us * 1e-3,
                 static_cast<int>(last_.corridor.polytopes.size()), t.optimize.wall_us * 1e-3,
-                last_.optimizer_evaluations, t.verify.wall_us * 1e-3);
+                last_.optimizer_evaluations, t.verify.wall_us * 1e-3,
+                last_.check_margin_retries > 0 ? "; planned twice, off the arbiter's margin" : "");
   result.status = last_.ok() ? plan_result_t::STATUS_OK : plan_result_t::STATUS_FAILED;
   result.reason = toWireReason(last_.status);
   result.detail =

@@ -24,15 +24,10 @@ namespace {
 constexpr double kFaceInset = 1e-6;  // m
 }  // namespace
 
-bool withinInflation(const VoxelGrid& grid, const Eigen::Vector3i& local, double radius_m) {
-  const double r = radius_m / grid.resolution() + 1e-9;  // in cells
-  const int reach = static_cast<int>(std::floor(r));
-  for (int z = -reach; z <= reach; ++z)
-    for (int y = -reach; y <= reach; ++y)
-      for (int x = -reach; x <= reach; ++x)
-        if (x * x + y * y + z * z <= r * r &&
-            grid.at(local + Eigen::Vector3i(x, y, z)) == Occupancy::kOccupied)
-          return true;
+bool withinInflation(const VoxelGrid& grid, const Eigen::Vector3i& local,
+                     const std::vector<Eigen::Vector3i>& offsets) {
+  for (const Eigen::Vector3i& o : offsets)
+    if (grid.at(local + o) == Occupancy::kOccupied) return true;
   return false;
 }
 
@@ -125,6 +120,8 @@ void BlockedMask::addCheckFaces(const VoxelGrid& grid, const Eigen::Vector3i& fi
   // A polytope face through a surface cell's centre leaves the cell's outer half inside the
   // polytope; where the arbiter's smaller margin still blocks that cell, the faces towards the
   // unblocked neighbours keep the polytopes out of it.
+  const std::vector<Eigen::Vector3i> offsets =
+      VoxelGrid::offsetsWithin(check_inflation_m, grid.resolution());
   const int64_t step[3] = {1, sy_, sz_};
   for (int z = 1; z < n_.z() + 1; ++z)
     for (int y = 1; y < n_.y() + 1; ++y)
@@ -136,7 +133,7 @@ void BlockedMask::addCheckFaces(const VoxelGrid& grid, const Eigen::Vector3i& fi
           surface = mask_[i - step[axis]] == 0 || mask_[i + step[axis]] == 0;
         if (!surface) continue;
         const Eigen::Vector3i local = first + Eigen::Vector3i(x - 1, y - 1, z - 1);
-        if (!withinInflation(grid, local, check_inflation_m)) continue;
+        if (!withinInflation(grid, local, offsets)) continue;
         const Eigen::Vector3d c = centerOf(x - 1, y - 1, z - 1);
         for (int axis = 0; axis < 3; ++axis)
           for (int sign : {-1, 1}) {

@@ -22,10 +22,11 @@ class StepTimer {
     wall_ = std::chrono::steady_clock::now();
     cpu_ = threadCpuUs();
   }
-  void stop(StepTime* out) const {
-    out->wall_us =
+  // Adds the time since restart() to *out (a step made twice, e.g. a replan, counts both).
+  void addTo(StepTime* out) const {
+    out->wall_us +=
         std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - wall_).count();
-    out->cpu_us = threadCpuUs() - cpu_;
+    out->cpu_us += threadCpuUs() - cpu_;
   }
 
  private:
@@ -64,7 +65,7 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
     out.status = status;
     out.detail = detail;
     if (status != PlanStatus::kOk) out.trajectory = Trajectory();
-    whole.stop(&out.timings.total);
+    whole.addTo(&out.timings.total);
     return out;
   };
   const SomParams& p = params_;
@@ -91,7 +92,7 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
     return finish(PlanStatus::kStartInObstacle, "start lies in an occupied voxel");
   if (grid.isBlockedPoint(target))
     return finish(PlanStatus::kTargetInObstacle, "target lies inside the inflated obstacles");
-  whole.stop(&out.timings.checks);
+  whole.addTo(&out.timings.checks);
 
   // --- A* ---------------------------------------------------------------------------------
   StepTimer step;
@@ -109,7 +110,7 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
   const AStarResult found = astar_.search(grid, start.position, target, astar_options);
   out.astar_expansions = found.expansions;
   if (found.ok()) out.path = shortenPath(grid, withoutCollinearPoints(found.path));
-  step.stop(&out.timings.astar);
+  step.addTo(&out.timings.astar);
   switch (found.status) {
     case AStarResult::Status::kFound:
       break;
@@ -144,7 +145,7 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
     const bool corridor_ok =
         corridor_builder_.build(grid, out.path, bound_lo, bound_hi, escape, corridor_params,
                                 &out.corridor, &why, start.velocity, p.max_acc_mps2);
-    step.stop(&out.timings.corridor);
+    step.addTo(&out.timings.corridor);
     if (!corridor_ok) {
       out.detail = why;
       return PlanStatus::kCorridor;
@@ -152,7 +153,7 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
     step.restart();
     OptimizerOutput opt;
     const bool opt_ok = optimizer_.setup(start, target, out.corridor) && optimizer_.optimize(&opt);
-    step.stop(&out.timings.optimize);
+    step.addTo(&out.timings.optimize);
     out.optimizer_evaluations += opt.evaluations;
     out.cost_total = opt.cost_total;
     out.cost_control = opt.cost_control;
@@ -168,18 +169,18 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
     out.verify =
         verifyTrajectory(out.trajectory, start, target, grid, out.corridor, out.piece_polytope,
                          p.max_vel_mps, p.max_acc_mps2, p.verify, escape_min_distance);
-    step.stop(&out.timings.verify);
+    step.addTo(&out.timings.verify);
     if (!out.verify.ok) {
       out.detail = out.verify.failure;
       return PlanStatus::kVerify;
     }
     return std::nullopt;
   };
-  std::optional<PlanStatus> failed = corridorToVerified(0.0);
-  if (!failed && p.corridor.check_inflation_m > 0.0 &&
-      entersCheckMargin(out.trajectory, grid, p.corridor.check_inflation_m)) {
+  std::optional<PlanStatus> failed = corridorToVerified(p.corridor.check_inflation_m);
+  if (!failed && p.arbiter_check_inflation_m > p.corridor.check_inflation_m &&
+      entersCheckMargin(out.trajectory, grid, p.arbiter_check_inflation_m)) {
     ++out.check_margin_retries;
-    failed = corridorToVerified(p.corridor.check_inflation_m);
+    failed = corridorToVerified(p.arbiter_check_inflation_m);
   }
   if (failed) return finish(*failed, out.detail);
   return finish(PlanStatus::kOk, "");

@@ -78,13 +78,15 @@ VerifyReport verifyTrajectory(const Trajectory& traj, const KinematicState& star
 bool entersCheckMargin(const Trajectory& traj, const VoxelGrid& grid, double check_inflation_m,
                        double step_s) {
   if (traj.empty()) return false;
+  const std::vector<Eigen::Vector3i> offsets =
+      VoxelGrid::offsetsWithin(check_inflation_m, grid.resolution());
   bool leaving_start = true;
   Eigen::Vector3i last(INT32_MIN, INT32_MIN, INT32_MIN);
   for (double s = 0.0; s <= traj.duration() + 0.5 * step_s; s += step_s) {
     const Eigen::Vector3i cell = grid.localIndexOf(traj.position(std::min(s, traj.duration())));
     if (cell == last) continue;
     last = cell;
-    const bool blocked = withinInflation(grid, cell, check_inflation_m);
+    const bool blocked = withinInflation(grid, cell, offsets);
     if (leaving_start) {
       leaving_start = blocked;
       continue;

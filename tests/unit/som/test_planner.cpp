@@ -213,7 +213,7 @@ arbiter: {check_inflation_m: 0.2}
   EXPECT_EQ(p.optimizer.time_weight, 500.0);
   EXPECT_EQ(p.optimizer.samples_per_piece, 6);
   EXPECT_EQ(p.corridor.iterations, 3);
-  EXPECT_EQ(p.corridor.check_inflation_m, 0.2);  // the arbiter's, shared
+  EXPECT_EQ(p.arbiter_check_inflation_m, 0.2);  // the arbiter's, shared
   EXPECT_EQ(p.optimizer.max_evaluations, mmh::som::OptimizerParams().max_evaluations);
   EXPECT_THROW(mmh::som::loadSomParams(mmh::Config::fromString(R"(
 vehicle: {max_vel_mps: 3.0, max_acc_mps2: 2.0}

@@ -65,6 +65,9 @@ class VoxelGrid {
   // radius rebuilds the counts; later updates are incremental.
   void setInflationRadius(double radius_m);
   double inflationRadius() const { return inflation_radius_; }
+  // Offsets (in cells) whose centres lie within radius_m of a cell's centre: the inflation
+  // kernel, for checks that need another radius than the grid's own.
+  static std::vector<Eigen::Vector3i> offsetsWithin(double radius_m, double resolution_m);
   bool isBlocked(const Eigen::Vector3i& local) const {
     return inWindow(local) && blocked_count_[linearIndex(local)] > 0;
   }

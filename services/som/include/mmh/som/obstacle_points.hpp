@@ -73,9 +73,10 @@ void blockedPointsInside(const VoxelGrid& grid, const Eigen::Vector3d& lo,
                          const Eigen::Vector3d& hi, const Polytope& poly, const EscapeZone& escape,
                          std::vector<Eigen::Vector3d>* out);
 
-// Whether the centre of cell `local` lies within radius_m of the centre of an occupied cell
-// (VoxelGrid::setInflationRadius's rule, without an inflated copy of the grid).
-bool withinInflation(const VoxelGrid& grid, const Eigen::Vector3i& local, double radius_m);
+// Whether an occupied cell lies at one of `offsets` (VoxelGrid::offsetsWithin) from cell
+// `local`: the grid's inflation rule for another radius, without an inflated copy of the grid.
+bool withinInflation(const VoxelGrid& grid, const Eigen::Vector3i& local,
+                     const std::vector<Eigen::Vector3i>& offsets);
 
 // Index range (inclusive, local cell indices) of the cells whose centres lie in [lo, hi],
 // clamped to the window; false if empty.

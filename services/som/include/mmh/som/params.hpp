@@ -27,9 +27,9 @@ struct CorridorParams {
   // A junction point must be at least this far inside both polytopes it joins.
   double junction_margin_m = 0.1;
   int max_polytopes = 48;
-  // The arbiter's check inflation (arbiter.check_inflation_m): cells within it of an occupied
-  // cell are kept out of the polytopes entirely, not only up to their centres (0: off).
-  double check_inflation_m = 0.25;
+  // Cells whose centres lie within this of an occupied cell are kept out of the polytopes
+  // entirely, not only up to their centres (0: off; see Planner::plan).
+  double check_inflation_m = 0.0;
 };
 
 struct OptimizerParams {
@@ -82,6 +82,9 @@ struct SomParams {
   // ... but only outwards: no point of the way out nearer to the occupied cells than the start,
   // or than this (whichever is less; mmh::escapeMinDistance).
   double start_escape_clearance_m = 0.28;
+  // The arbiter's check inflation (arbiter.check_inflation_m): an answer that enters a cell it
+  // blocks is planned again with such cells kept out of the corridor (0: never).
+  double arbiter_check_inflation_m = 0.25;
   CorridorParams corridor;
   OptimizerParams optimizer;
   VerifyParams verify;
