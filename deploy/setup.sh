@@ -22,7 +22,7 @@ packages=(
   iproute2 util-linux procps python3 python3-matplotlib python3-numpy python3-yaml openssh-client
   openssh-server ansible python3-apt lintian fakeroot dpkg-dev file
   xvfb xauth x11-utils imagemagick clang clang-format libclang-rt-14-dev
-  libwebsocketpp-dev libasio-dev chromium stress-ng
+  libwebsocketpp-dev libasio-dev chromium stress-ng debootstrap systemd-container
 )
 # Node.js and npm for mmh-viewer's page; a Node.js that already brings npm (e.g. a newer nodejs
 # package that provides it) is kept.
