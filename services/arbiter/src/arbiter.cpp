@@ -318,10 +318,23 @@ void Arbiter::evaluate(int64_t now) {
       committed_.mode == Mode::kStop && odometry_->velocity.norm() > params_.braking_speed_mps;
   const bool is_stuck = stuck != StuckResponse::kNone;
   if (retryThrottled(trigger, braking_in_stop, is_stuck, view.since_last_round_s, params_)) return;
-  const std::vector<Mode> modes = modesFor(trigger, view, params_);
+  const std::optional<double> since_back_off =
+      last_backoff_utime_ ? std::optional<double>((now - *last_backoff_utime_) * kUs)
+                          : std::nullopt;
+  // Stuck: the round backs off to recently flown free space, so that the next rounds start clear
+  // of the obstacle they keep failing at.
+  std::optional<Eigen::Vector3d> back_off;
+  if (grid_ && backOffDue(trigger, stuck, since_back_off, params_)) {
+    const int64_t start_utime = now + static_cast<int64_t>(budget_.replan_lead_s * 1e6);
+    back_off = progress_.backOffPoint(*grid_, stateAt(start_utime).position,
+                                      params_.backoff_min_distance_m,
+                                      params_.inflation_m + params_.backoff_clearance_m);
+  }
+  const std::vector<Mode> modes =
+      back_off ? modesForBackOff(chain_.modes()) : modesFor(trigger, view, params_);
   if (modes.empty()) return;
   if (trigger == Trigger::kRetry) chain_.beginRetry(modes.front());
-  startRound(trigger, modes, now, is_stuck);
+  startRound(trigger, modes, now, back_off);
 }
 
 void Arbiter::giveUp(int64_t now) {
@@ -344,7 +357,8 @@ void Arbiter::giveUp(int64_t now) {
   pushDecision(d);
 }
 
-void Arbiter::startRound(Trigger trigger, const std::vector<Mode>& modes, int64_t now, bool stuck) {
+void Arbiter::startRound(Trigger trigger, const std::vector<Mode>& modes, int64_t now,
+                         const std::optional<Eigen::Vector3d>& back_off) {
   if (trigger != Trigger::kRetry) chain_.reset();  // a new episode of attempts
   last_round_utime_ = now;
   Round round;
@@ -366,16 +380,6 @@ void Arbiter::startRound(Trigger trigger, const std::vector<Mode>& modes, int64_
       isClearOf(*grid_, committed.position(committed.duration()), params_.inflation_m);
   const bool use_reference =
       collisionKeepsReference(trigger, end_clear, start_s, committed.duration(), params_);
-  // Stuck: once per stuck_after_s, a retry backs off to recently flown free space, so that the
-  // next rounds start clear of the obstacle they keep failing at.
-  const bool may_back_off =
-      stuck && trigger == Trigger::kRetry && grid_ &&
-      (!last_backoff_utime_ || (now - *last_backoff_utime_) * kUs >= params_.stuck_after_s);
-  const std::optional<Eigen::Vector3d> back_off =
-      may_back_off ? progress_.backOffPoint(*grid_, round.start.state.position,
-                                            params_.backoff_min_distance_m,
-                                            params_.inflation_m + params_.backoff_clearance_m)
-                   : std::nullopt;
   Trajectory reference;
   if (back_off) {
     round.target = *back_off;

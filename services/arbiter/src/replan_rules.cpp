@@ -102,6 +102,16 @@ StuckResponse stuckResponse(double no_progress_s, const ArbiterParams& params) {
   return StuckResponse::kNone;
 }
 
+bool backOffDue(Trigger trigger, StuckResponse stuck, std::optional<double> since_last_back_off_s,
+                const ArbiterParams& params) {
+  return trigger == Trigger::kRetry && stuck != StuckResponse::kNone &&
+         (!since_last_back_off_s || *since_last_back_off_s >= params.stuck_after_s);
+}
+
+std::vector<Mode> modesForBackOff(const std::vector<Mode>& chain_modes) {
+  return chain_modes;
+}
+
 bool collisionKeepsReference(Trigger trigger, bool end_clear, double start_s, double duration_s,
                              const ArbiterParams& params) {
   return trigger == Trigger::kCollision && end_clear &&

@@ -2,6 +2,7 @@
 // hand-made view of the arbiter's state.
 #include <gtest/gtest.h>
 
+#include "mmh/arbiter/fallback_chain.hpp"
 #include "mmh/arbiter/replan_rules.hpp"
 #include "mmh/common/minco.hpp"
 
@@ -203,6 +204,26 @@ TEST(ReplanRules, NoProgressMeansStuckThenUnreachable) {
   EXPECT_EQ(stuckResponse(p.stuck_after_s - 0.1, p), StuckResponse::kNone);
   EXPECT_EQ(stuckResponse(p.stuck_after_s + 0.1, p), StuckResponse::kBackOff);
   EXPECT_EQ(stuckResponse(p.give_up_s + 0.1, p), StuckResponse::kGiveUp);
+}
+
+TEST(ReplanRules, AStuckRetryBacksOffOncePerStuckPeriod) {
+  const ArbiterParams p = paramsFor(Policy::kMmh);
+  EXPECT_FALSE(backOffDue(Trigger::kRetry, StuckResponse::kNone, std::nullopt, p));
+  EXPECT_TRUE(backOffDue(Trigger::kRetry, StuckResponse::kBackOff, std::nullopt, p));
+  EXPECT_FALSE(backOffDue(Trigger::kRetry, StuckResponse::kBackOff, p.stuck_after_s - 0.1, p));
+  EXPECT_TRUE(backOffDue(Trigger::kRetry, StuckResponse::kBackOff, p.stuck_after_s + 0.1, p));
+  // An unreachable goal's retries still back off.
+  EXPECT_TRUE(backOffDue(Trigger::kRetry, StuckResponse::kGiveUp, p.stuck_after_s + 0.1, p));
+  // Only retries: a collision or a new goal plans toward the goal.
+  EXPECT_FALSE(backOffDue(Trigger::kCollision, StuckResponse::kBackOff, std::nullopt, p));
+  EXPECT_FALSE(backOffDue(Trigger::kGoalChanged, StuckResponse::kBackOff, std::nullopt, p));
+}
+
+TEST(ReplanRules, ABackOffAsksEveryModeOfTheChain) {
+  EXPECT_EQ(modesForBackOff(FallbackChain(Policy::kMmh).modes()),
+            (std::vector<Mode>{Mode::kSom, Mode::kEam}));
+  EXPECT_EQ(modesForBackOff(FallbackChain(Policy::kEgo).modes()), std::vector<Mode>{Mode::kEam});
+  EXPECT_EQ(modesForBackOff(FallbackChain(Policy::kSom).modes()), std::vector<Mode>{Mode::kSom});
 }
 
 TEST(ReplanRules, AnUnreachableGoalIsRetriedOnlyEveryUnreachableRetryPeriod) {

@@ -179,7 +179,9 @@ class Arbiter {
   // A new map put the goal into an obstacle's margin: move it to the nearest free point.
   void relocateGoalIfBlocked();
   void reportGoalMoved(const std::string& why);
-  void startRound(Trigger trigger, const std::vector<Mode>& modes, int64_t now, bool stuck);
+  // back_off: the target of a stuck retry (recently flown free space), else the usual target.
+  void startRound(Trigger trigger, const std::vector<Mode>& modes, int64_t now,
+                  const std::optional<Eigen::Vector3d>& back_off);
   // No progress for give_up_s: hold (a stop if moving) and report the goal unreachable.
   void giveUp(int64_t now);
   void decide(int64_t now, bool by_deadline);

@@ -28,6 +28,8 @@ class FallbackChain {
   std::optional<Mode> next(int64_t map_seq) const;
   // Every mode of the chain was asked in this episode.
   bool exhausted() const;
+  // The chain's modes in the order they are asked.
+  const std::vector<Mode>& modes() const { return modes_; }
 
  private:
   bool asked(Mode mode) const { return (asked_ & modeBit(mode)) != 0; }
