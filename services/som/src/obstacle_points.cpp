@@ -68,15 +68,7 @@ bool BlockedMask::build(const VoxelGrid& grid, const Eigen::Vector3d& lo, const 
     }
   }
   if (escape.radius > 0.0) {
-    // Inflated (not occupied) cells around the start are free. Not those the other check's
-    // margin blocks when the start lies outside that margin: that check allows no escape then,
-    // and a way out through them would be refused there every round.
-    std::vector<Eigen::Vector3i> check_offsets;
-    if (check_inflation_m > 0.0) {
-      check_offsets = VoxelGrid::offsetsWithin(check_inflation_m, grid.resolution());
-      if (withinInflation(grid, grid.localIndexOf(escape.center), check_offsets))
-        check_offsets.clear();
-    }
+    // Inflated (not occupied) cells around the start are free.
     const double r2 = escape.radius * escape.radius;
     for (int z = 0; z < n_.z() + 2; ++z)
       for (int y = 0; y < n_.y() + 2; ++y)
@@ -86,7 +78,6 @@ bool BlockedMask::build(const VoxelGrid& grid, const Eigen::Vector3d& lo, const 
           const Eigen::Vector3d c = centerOf(x - 1, y - 1, z - 1);
           if ((c - escape.center).squaredNorm() > r2) continue;
           const Eigen::Vector3i local = f + Eigen::Vector3i(x - 1, y - 1, z - 1);
-          if (!check_offsets.empty() && withinInflation(grid, local, check_offsets)) continue;
           if (escape.frees(grid, local, c)) m = 2;
         }
     // The faces through the obstacle points may pass through the centres of the blocked cells

@@ -250,52 +250,6 @@ TEST(ObstaclePoints, EscapeZoneFreesOnlyTheMarginAroundTheStart) {
   }
 }
 
-// Centres of the cells the mask keeps blocked in [lo, hi] (every centre strictly inside the box).
-static std::vector<Vector3d> maskedCentres(const mmh::VoxelGrid& g, const Vector3d& lo,
-                                           const Vector3d& hi, const mmh::som::EscapeZone& escape,
-                                           double check_m) {
-  mmh::som::BlockedMask mask;
-  EXPECT_TRUE(mask.build(g, lo, hi, escape, check_m));
-  std::vector<Vector3d> inside;
-  const Vector3d pad = Vector3d::Constant(g.resolution());
-  mask.pointsInside(box(lo - pad, hi + pad), &inside);
-  return inside;
-}
-
-TEST(ObstaclePoints, AnEscapeFromOutsideTheArbitersMarginFreesNoneOfItsCells) {
-  const som_test::World w = som_test::pillars();
-  const mmh::VoxelGrid& g = *w.grid;  // inflated 0.3 m
-  mmh::VoxelGrid check = g;
-  check.setInflationRadius(0.25);
-  const Vector3d lo(2.0, -1.0, 1.0), hi(4.0, 1.5, 1.4);
-  auto blocked_by_check_but_free = [&](const mmh::som::EscapeZone& escape, double check_m) {
-    const std::vector<Vector3d> kept = maskedCentres(g, lo, hi, escape, check_m);
-    int n = 0;
-    for (int64_t i = 0; i < g.numCells(); ++i) {
-      const Eigen::Vector3i c = g.localFromLinear(i);
-      const Vector3d p = g.centerOfLocal(c);
-      if (!check.isBlocked(c) || !som_test::inBox(p, lo, hi)) continue;
-      bool is_kept = false;
-      for (const Vector3d& q : kept) is_kept = is_kept || (q - p).norm() < 1e-9;
-      n += !is_kept;
-    }
-    return n;
-  };
-  // Starts in the 0.3 m margin of the pillar at (3, 0.2) r 0.3: outside the arbiter's 0.25 m
-  // margin, and inside it.
-  const mmh::som::EscapeZone outside{Vector3d(3.0, 0.79, 1.2), 0.5};
-  const mmh::som::EscapeZone inside{Vector3d(3.0, 0.62, 1.2), 0.5};
-  ASSERT_TRUE(g.isBlockedPoint(outside.center));
-  ASSERT_FALSE(check.isBlockedPoint(outside.center));
-  ASSERT_TRUE(check.isBlockedPoint(inside.center));
-  ASSERT_FALSE(g.isOccupiedPoint(inside.center));
-  // Without the arbiter's margin the escape frees cells it blocks; with it, from outside, none.
-  EXPECT_GT(blocked_by_check_but_free(outside, 0.0), 0);
-  EXPECT_EQ(blocked_by_check_but_free(outside, 0.25), 0);
-  // From inside it the arbiter allows the escape too: SOM frees them as before.
-  EXPECT_GT(blocked_by_check_but_free(inside, 0.25), 0);
-}
-
 TEST(ObstaclePoints, CellsTheArbitersMarginBlocksGiveTheirOuterFaces) {
   const som_test::World w = som_test::pillars();
   const mmh::VoxelGrid& g = *w.grid;  // inflated 0.3 m

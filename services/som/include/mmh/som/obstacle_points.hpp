@@ -32,8 +32,7 @@ class BlockedMask {
  public:
   // False if no cell centre lies in [lo, hi]. Surface cells whose centres lie within
   // check_inflation_m of an occupied cell (a smaller margin that another check blocks whole
-  // cells by; 0: none) also give the centres of their faces towards unblocked 6-neighbours;
-  // when the escape's start lies outside that margin, the escape frees none of its cells.
+  // cells by; 0: none) also give the centres of their faces towards unblocked 6-neighbours.
   bool build(const VoxelGrid& grid, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
              const EscapeZone& escape, double check_inflation_m = 0.0);
   // Centres of the blocked cells with at least one 6-neighbour that is not blocked, and the
