@@ -330,8 +330,7 @@ void Arbiter::evaluate(int64_t now) {
                                       params_.backoff_min_distance_m,
                                       params_.inflation_m + params_.backoff_clearance_m);
   }
-  const std::vector<Mode> modes =
-      back_off ? modesForBackOff(chain_.modes()) : modesFor(trigger, view, params_);
+  const std::vector<Mode> modes = back_off ? chain_.modes() : modesFor(trigger, view, params_);
   if (modes.empty()) return;
   if (trigger == Trigger::kRetry) chain_.beginRetry(modes.front());
   startRound(trigger, modes, now, back_off);

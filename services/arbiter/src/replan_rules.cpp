@@ -108,10 +108,6 @@ bool backOffDue(Trigger trigger, StuckResponse stuck, std::optional<double> sinc
          (!since_last_back_off_s || *since_last_back_off_s >= params.stuck_after_s);
 }
 
-std::vector<Mode> modesForBackOff(const std::vector<Mode>& chain_modes) {
-  return chain_modes;
-}
-
 bool collisionKeepsReference(Trigger trigger, bool end_clear, double start_s, double duration_s,
                              const ArbiterParams& params) {
   return trigger == Trigger::kCollision && end_clear &&

@@ -2,7 +2,6 @@
 // hand-made view of the arbiter's state.
 #include <gtest/gtest.h>
 
-#include "mmh/arbiter/fallback_chain.hpp"
 #include "mmh/arbiter/replan_rules.hpp"
 #include "mmh/common/minco.hpp"
 
@@ -217,13 +216,6 @@ TEST(ReplanRules, AStuckRetryBacksOffOncePerStuckPeriod) {
   // Only retries: a collision or a new goal plans toward the goal.
   EXPECT_FALSE(backOffDue(Trigger::kCollision, StuckResponse::kBackOff, std::nullopt, p));
   EXPECT_FALSE(backOffDue(Trigger::kGoalChanged, StuckResponse::kBackOff, std::nullopt, p));
-}
-
-TEST(ReplanRules, ABackOffAsksEveryModeOfTheChain) {
-  EXPECT_EQ(modesForBackOff(FallbackChain(Policy::kMmh).modes()),
-            (std::vector<Mode>{Mode::kSom, Mode::kEam}));
-  EXPECT_EQ(modesForBackOff(FallbackChain(Policy::kEgo).modes()), std::vector<Mode>{Mode::kEam});
-  EXPECT_EQ(modesForBackOff(FallbackChain(Policy::kSom).modes()), std::vector<Mode>{Mode::kSom});
 }
 
 TEST(ReplanRules, AnUnreachableGoalIsRetriedOnlyEveryUnreachableRetryPeriod) {

@@ -94,15 +94,12 @@ enum class StuckResponse {
 };
 StuckResponse stuckResponse(double no_progress_s, const ArbiterParams& params);
 
-// Stuck: once per stuck_after_s a retry backs off to recently flown free space.
-// since_last_back_off_s is empty before the first back-off of the flight.
+// Stuck: once per stuck_after_s a retry backs off to recently flown free space, asking every mode
+// of the fallback chain at once (the best answer is committed), not only the mode whose turn it
+// is, which is often the one that keeps failing in place. since_last_back_off_s is empty before
+// the first back-off of the flight.
 bool backOffDue(Trigger trigger, StuckResponse stuck, std::optional<double> since_last_back_off_s,
                 const ArbiterParams& params);
-
-// A back-off round asks every mode of the fallback chain at once for the way out (the best
-// answer is committed), not only the mode whose turn it is: a stuck vehicle has the time, and
-// the mode that keeps failing in place is often the one whose turn it is.
-std::vector<Mode> modesForBackOff(const std::vector<Mode>& chain_modes);
 
 // EAM on a collision re-optimises the rest of the committed trajectory (its reference), ending
 // where it ends, when more than reference_min_remaining_s of it is left after the new start
