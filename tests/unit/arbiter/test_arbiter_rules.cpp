@@ -1,6 +1,7 @@
 // The arbiter's rules one by one, with scripted inputs (no LCM, no planners).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <optional>
 
 #include "../sim/traj_helpers.hpp"
@@ -431,6 +432,41 @@ TEST_F(ArbiterRules, WhileStuckAFailedRoundWithTheDangerCloseStopsAtOnce) {
   EXPECT_EQ(commit->mode, Mode::kStop);
   const Trajectory& t = commit->trajectory;
   EXPECT_FALSE(mmh::firstCollisionTime(grid_, t, 0.0, t.duration()).has_value());
+}
+
+TEST_F(ArbiterRules, AStuckVehicleBacksOffAskingEveryModeOfTheChainAtOnce) {
+  // No step toward the goal ever counts as progress, so the vehicle is stuck once it fails.
+  params_.progress_min_step_m = 1000.0;
+  params_.stuck_after_s = 0.5;
+  auto a = started(Policy::kMmh);
+  KinematicState before;
+  const double t1 = flyToCruise(*a, &before);
+  putPillar(before.position.x() + 2.5, 0.0, 0.4);
+  // Every mode fails from here on: the vehicle stops, then retries until a back-off round.
+  std::vector<PlanRequestOut> back_off;
+  for (double t = t1; t < t1 + 10.0 && back_off.empty(); t += 0.01) {
+    const int64_t now = at(t);
+    if (std::lround(t * 100) % 10 == 0) a->onMapUpdated(grid_, ++map_seq_, now, now);
+    a->onOdometry(a->committed().state((now - a->committedStartUtime()) * 1e-6), now);
+    const std::vector<PlanRequestOut> round = a->takeRequests();
+    if (a->counters().back_offs > 0) back_off = round;
+    for (const auto& r : round) a->onAnswer(failedAnswer(r), now + 1000);
+    a->takeCommit();
+  }
+  ASSERT_EQ(back_off.size(), 2u) << "no back-off round asking two modes";
+  std::vector<Mode> asked = {back_off[0].mode, back_off[1].mode};
+  std::sort(asked.begin(), asked.end());
+  std::vector<Mode> chain = {Mode::kSom, Mode::kEam};
+  std::sort(chain.begin(), chain.end());
+  EXPECT_EQ(asked, chain);
+  for (const auto& r : back_off) {
+    EXPECT_EQ(r.trigger, Trigger::kRetry);
+    // Back along the way it came (toward the start), at least backoff_min_distance_m away, with
+    // no reference to repair: a fresh plan from where it stands.
+    EXPECT_LT(r.target.x(), r.start.position.x());
+    EXPECT_GE((r.target - r.start.position).norm(), params_.backoff_min_distance_m - 1e-9);
+    EXPECT_TRUE(r.reference.empty());
+  }
 }
 
 TEST_F(ArbiterRules, UnmappedSpaceWithinStoppingReachAsksARoundThenStopsBeforeIt) {
