@@ -75,6 +75,8 @@ std::vector<ConfigConstraint> buildConstraints() {
                }});
   c.push_back(atLeast("arbiter.max_answer_deadline_s", "arbiter.answer_deadline_s", 0.0,
                       "the latency budget only lengthens the configured deadline"));
+  c.push_back(atLeast("arbiter.max_slowed_answer_deadline_s", "arbiter.max_answer_deadline_s", 0.0,
+                      "the deadline grows past the full-speed one only with the speed lowered"));
   c.push_back({{"map.window_size_m", "vehicle.max_vel_mps", "arbiter.planning_horizon_s"},
                "map.window_size_m x and y >= 2 x vehicle.max_vel_mps x arbiter.planning_horizon_s",
                "the local target (up to v_max x horizon away) must lie inside the map window",

@@ -279,7 +279,13 @@ std::vector<KeySpec> buildKeys() {
       real("arbiter.latency_headroom", 1.0, 10.0, "1.5",
            "Late answers lengthen the deadline to this x their p99 latency"),
       real("arbiter.max_answer_deadline_s", 0.001, 2.0, "0.2",
-           "The longest the deadline (and with it the replan lead) may grow under load"),
+           "The longest the deadline (and with it the replan lead) may grow at full speed"),
+      real("arbiter.max_slowed_answer_deadline_s", 0.001, 5.0, "1.0",
+           "Past max_answer_deadline_s the deadline may grow to this, the speed lowered so that "
+           "the vehicle still stops within awareness.sensor_range_m"),
+      real("arbiter.slowdown_tolerance", 0.0, 1.0, "0.05",
+           "The committed trajectory is slowed down when it is faster than the lowered speed "
+           "limit by more than this fraction of it"),
       real("arbiter.max_map_age_s", 0.01, 5.0, "0.25",
            "LOCAL_MAP older than this on arrival (p99) marks the arbiter degraded"),
       choice("arbiter.parallel_modes", {"none", "collision", "always"}, "none",

@@ -172,6 +172,8 @@ bool validate(const plan_request_t& msg, std::string* why) {
   if (msg.start_utime < 0 || msg.deadline_utime < 0) return fail(why, "negative time");
   if (msg.start_utime > kMaxUtime_us || msg.deadline_utime > kMaxUtime_us)
     return fail(why, "absurd time");
+  if (!std::isfinite(msg.max_speed_mps) || msg.max_speed_mps < 0.0 || msg.max_speed_mps > 1e3)
+    return fail(why, "max_speed_mps is not finite, negative or absurd");
   return validate(msg.reference, why);
 }
 

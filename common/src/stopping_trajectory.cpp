@@ -15,6 +15,9 @@ double accelerationLimit(const KinematicState& start, double max_acc_mps2) {
   return std::max(max_acc_mps2, start.acceleration.norm()) * (1.0 + 1e-6);
 }
 
+// The re-timed curve is fitted with polynomial pieces, which may bulge this much above it.
+constexpr double kSlowdownSpeedTolerance = 1.02;
+
 // Longest stop worth trying: well past a bang-bang stop at half the deceleration. Beyond it a
 // stop only drifts farther along (a stop of a minute once ran straight through the forest).
 double longestStop(double speed, double max_acc_mps2) {
@@ -101,6 +104,47 @@ Trajectory makeStoppingTrajectory(const Trajectory& path, double t0, double max_
     Trajectory stop = minco.trajectory();
     if (stop.maxAcceleration() <= acc_limit && stop.maxSpeed() <= speed_limit * 1.0001) return stop;
   }
+}
+
+Trajectory makeSlowdownTrajectory(const Trajectory& path, double t0, double max_speed_mps,
+                                  double max_acc_mps2) {
+  const double end = path.duration();
+  if (t0 >= end - 1e-3 || max_speed_mps <= 0.0) return Trajectory();
+  const double top_speed = path.tail(t0).maxSpeed();
+  if (top_speed <= max_speed_mps) return Trajectory();
+  const KinematicState start = path.state(t0);
+  const double speed = start.velocity.norm();
+  const double ratio = max_speed_mps / top_speed;
+  const double acc_limit = accelerationLimit(start, max_acc_mps2);
+  // Time warp with tau' = 1 - (1 - ratio)(3u^2 - 2u^3) over the transition (u = t / T), then
+  // tau' = ratio: tau'' is zero at both ends of the transition, so the acceleration stays
+  // continuous. Peak deceleration of the warp: 1.5 (1 - ratio) speed / T.
+  for (double transition = std::max(0.3, 1.5 * (1.0 - ratio) * speed / (0.9 * max_acc_mps2));
+       transition <= longestStop(speed, max_acc_mps2); transition *= 1.1) {
+    const double warped_transition = t0 + 0.5 * transition * (1.0 + ratio);
+    if (warped_transition >= end) break;
+    const double total = transition + (end - warped_transition) / ratio;
+    auto warp = [&](double t) {
+      if (t >= transition) return std::min(end, warped_transition + ratio * (t - transition));
+      const double u = t / transition;
+      return t0 + t - (1.0 - ratio) * transition * (u * u * u - 0.5 * u * u * u * u);
+    };
+    const int pieces = std::max(3, static_cast<int>(std::ceil(total / 0.15)));
+    MincoJerk minco;
+    Eigen::Matrix3d head, tail;
+    head << start.position, start.velocity, start.acceleration;
+    tail << path.position(end), ratio * path.velocity(end), ratio * ratio * path.acceleration(end);
+    minco.setConditions(head, tail, pieces);
+    Eigen::Matrix3Xd inner(3, pieces - 1);
+    for (int i = 1; i < pieces; ++i) inner.col(i - 1) = path.position(warp(total * i / pieces));
+    minco.setParameters(inner, Eigen::VectorXd::Constant(pieces, total / pieces));
+    Trajectory slow = minco.trajectory();
+    bool slow_enough = slow.maxSpeed() <= top_speed * 1.0001;
+    for (double t = transition; slow_enough && t < slow.duration(); t += 0.02)
+      slow_enough = slow.velocity(t).norm() <= max_speed_mps * kSlowdownSpeedTolerance;
+    if (slow_enough && slow.maxAcceleration() <= acc_limit) return slow;
+  }
+  return Trajectory();
 }
 
 namespace {

@@ -167,6 +167,7 @@ void planRequest() {
   m.target[0] = 10.0;
   m.goal[0] = 19.95;
   m.deadline_utime = 2'200'000;
+  m.max_speed_mps = 2.4;
   m.map_seq = 5;
   setWaypoints({Eigen::Vector3d(3, 1, 1.2), Eigen::Vector3d(6, -1, 1.2)}, m);
   write(m, "fpm-waypoints");

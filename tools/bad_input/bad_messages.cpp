@@ -341,6 +341,12 @@ void addStackMessages(std::vector<BadMessage>& out, Stamper& st, const Catalogue
       r.target[1] = -kInf;
       out.push_back({ch + " with an infinite target", ch, encode(r), {{svc, "rejected_invalid"}}});
       r = request(st.next(ch), modes[i]);
+      r.max_speed_mps = -kInf;
+      out.push_back({ch + " with an infinite negative speed limit",
+                     ch,
+                     encode(r),
+                     {{svc, "rejected_invalid"}}});
+      r = request(st.next(ch), modes[i]);
       r.mode = 42;
       out.push_back({ch + " with mode 42", ch, encode(r), {{svc, "rejected_invalid"}}});
       r = request(st.next(ch), modes[i]);

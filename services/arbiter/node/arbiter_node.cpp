@@ -106,6 +106,7 @@ void ArbiterNode::flush() {
     fromVec3(r.target, msg.target);
     fromVec3(r.goal, msg.goal);
     msg.deadline_utime = r.deadline_utime;
+    msg.max_speed_mps = r.max_speed_mps;
     msg.map_seq = r.map_seq;
     setWaypoints({}, msg);
     if (!r.reference.empty()) {
@@ -173,12 +174,15 @@ void ArbiterNode::flush() {
   ctx_.setCounter("back_offs", n.back_offs);
   ctx_.setCounter("moved_goals", n.moved_goals);
   ctx_.setCounter("degraded_periods", n.degraded_periods);
+  ctx_.setCounter("slowdowns", n.slowdowns);
   // Latencies as gauges (ms), so that mmh-top and a log show what the budget sees.
   auto milliseconds = [](double seconds) { return static_cast<int64_t>(seconds * 1e3); };
   ctx_.setCounter("answer_latency_p99_ms",
                   milliseconds(arbiter_.latencyBudget().answer_latency_p99_s));
   ctx_.setCounter("map_age_p99_ms", milliseconds(arbiter_.latencyBudget().map_age_p99_s));
   ctx_.setCounter("answer_deadline_ms", milliseconds(arbiter_.latencyBudget().answer_deadline_s));
+  ctx_.setCounter("speed_limit_cmps",
+                  static_cast<int64_t>(arbiter_.latencyBudget().speed_limit_mps * 100.0));
   if (arbiter_.odometryStale(clockNow())) {
     ctx_.setState(heartbeat_t::STATE_DEGRADED, "ODOMETRY is stale: not planning");
   } else if (arbiter_.latencyBudget().degraded && arbiter_.hasGoal() && map_.hasMap()) {

@@ -92,7 +92,8 @@ bool checkAnswer(const Trajectory& t, int64_t answer_start_utime, const Requeste
   o.start_acceleration_tol_mps2 = params.start_acceleration_tolerance_mps2;
   // A start above a limit (e.g. braking) may keep it, but not exceed it.
   o.check_limits = true;
-  o.max_vel_mps = std::max(params.max_vel_mps, start.velocity.norm());
+  o.max_vel_mps =
+      std::max(speedLimitFor(requested.max_speed_mps, params.max_vel_mps), start.velocity.norm());
   o.max_acc_mps2 = std::max(params.max_acc_mps2, start.acceleration.norm());
   o.limit_relative_tol = params.answer_speed_tolerance;
   o.maxima = MaximaMethod::kStationaryPoints;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <utility>
 
 #include "mmh/arbiter/goal_placement.hpp"
@@ -277,7 +278,11 @@ StopView Arbiter::stopView(int64_t now) const {
 void Arbiter::evaluate(int64_t now) {
   if (!hasGoal() || !odometry_) return;
   if (round_) {
-    if (now > round_->deadline_utime) decide(now, true);
+    if (now > round_->deadline_utime) {
+      decide(now, true);
+    } else if (!odometryStale(now)) {
+      slowDownIfTooFast(now);
+    }
     return;
   }
   if (phase_ == Phase::kReached) return;
@@ -294,6 +299,7 @@ void Arbiter::evaluate(int64_t now) {
     pushDecision(d);
     return;
   }
+  slowDownIfTooFast(now);
   // A planner needs a map; awareness-driven policies also wait for an awareness of this goal.
   if (mapStale(now)) {
     if (shouldStop(StopCause::kStaleMap, stopView(now), params_)) {
@@ -336,6 +342,37 @@ void Arbiter::evaluate(int64_t now) {
   startRound(trigger, modes, now, back_off);
 }
 
+void Arbiter::slowDownIfTooFast(int64_t now) {
+  const double limit_mps = budget_.speed_limit_mps;
+  if (!hasCommitted() || committed_.mode == Mode::kStop || limit_mps >= params_.max_vel_mps) return;
+  // Not over a commit still to be sent; and a round in flight may still commit its answer, which
+  // starts in the state of the trajectory it was asked from: the slowdown may only begin after it.
+
+  if (commit_) return;
+  const int64_t start = now + static_cast<int64_t>(budget_.replan_lead_s * 1e6);
+  if (round_ && start < round_->start.start_utime) return;
+  const double t0 = (start - committed_.start_utime) * kUs;
+  const Trajectory& path = committed_.trajectory;
+  if (t0 >= path.duration() ||
+      path.tail(t0).maxSpeed() <= limit_mps * (1.0 + params_.slowdown_tolerance)) {
+    return;
+  }
+  const Trajectory slow = makeSlowdownTrajectory(path, t0, limit_mps, params_.max_acc_mps2);
+  // Too short to slow down on, or the fitted curve meets an obstacle: the usual rules go on.
+  if (slow.empty() || (grid_ && firstCollisionTime(*grid_, slow, 0.0, slow.duration()))) return;
+  commit(slow, start, committed_.mode, committed_.ends_at_goal);
+  ++counters_.slowdowns;
+  DecisionOut d;
+  d.outcome = Outcome::kCommitted;
+  d.committed_mode = committed_.mode;
+  d.trajectory_id = commit_->trajectory_id;
+  d.local_target = slow.position(slow.duration());
+  char speed[32];
+  std::snprintf(speed, sizeof speed, "%.2f", limit_mps);
+  d.detail = std::string("slowing down to ") + speed + " m/s: " + budget_.why;
+  pushDecision(d);
+}
+
 void Arbiter::giveUp(int64_t now) {
   phase_ = Phase::kUnreachable;
   ++counters_.unreachable_goals;
@@ -369,6 +406,9 @@ void Arbiter::startRound(Trigger trigger, const std::vector<Mode>& modes, int64_
   round.start.start_utime = now + static_cast<int64_t>(budget_.replan_lead_s * 1e6);
   round.deadline_utime = now + static_cast<int64_t>(budget_.answer_deadline_s * 1e6);
   round.start.state = stateAt(round.start.start_utime);
+  // A start faster than the speed limit may keep its speed (the planners could not start
+  // otherwise); slowDownIfTooFast brings the committed trajectory down to the limit first.
+  round.start.max_speed_mps = std::max(budget_.speed_limit_mps, round.start.state.velocity.norm());
   // EAM on a collision re-optimises the rest of the committed trajectory, ending where it ends,
   // unless that end itself is now inside an obstacle (with the planners' margin, which is wider
   // than the arbiter's own check: EAM refuses a target inside it).
@@ -408,6 +448,7 @@ void Arbiter::startRound(Trigger trigger, const std::vector<Mode>& modes, int64_
     r.start_utime = round.start.start_utime;
     r.start = round.start.state;
     r.deadline_utime = round.deadline_utime;
+    r.max_speed_mps = round.start.max_speed_mps;
     r.map_seq = map_seq_;
     r.target = round.target;
     r.goal = goal_.position;

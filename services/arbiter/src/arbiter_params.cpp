@@ -64,6 +64,9 @@ ArbiterParams loadArbiterParams(const Config& config) {
   p.latency_window_s = config.getDouble("arbiter.latency_window_s");
   p.latency_headroom = config.getDouble("arbiter.latency_headroom");
   p.max_answer_deadline_s = config.getDouble("arbiter.max_answer_deadline_s");
+  p.max_slowed_answer_deadline_s = config.getDouble("arbiter.max_slowed_answer_deadline_s");
+  p.sensor_range_m = config.getDouble("awareness.sensor_range_m");
+  p.slowdown_tolerance = config.getDouble("arbiter.slowdown_tolerance");
   p.max_map_age_s = config.getDouble("arbiter.max_map_age_s");
   p.goal_tolerance_m = config.getDouble("arbiter.goal_tolerance_m");
   p.fixed_replan_distance_m = config.getDouble("arbiter.fixed_replan_distance_m");

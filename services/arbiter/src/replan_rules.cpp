@@ -1,9 +1,11 @@
 #include "mmh/arbiter/replan_rules.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <string>
 
 #include "mmh/common/replan_lead.hpp"
+#include "mmh/common/vehicle_limits.hpp"
 
 namespace mmh::arbiter {
 
@@ -155,16 +157,29 @@ LatencyBudget latencyBudget(double answer_p99_s, double map_age_p99_s,
   b.map_age_p99_s = map_age_p99_s;
   b.answer_deadline_s = params.answer_deadline_s;
   b.replan_lead_s = params.replan_lead_s;
+  b.speed_limit_mps = params.max_vel_mps;
   const double needed_s = params.latency_headroom * answer_p99_s;
   if (needed_s > params.answer_deadline_s) {
-    b.answer_deadline_s = std::min(needed_s, params.max_answer_deadline_s);
+    b.answer_deadline_s = std::min(needed_s, params.max_slowed_answer_deadline_s);
     // The lead keeps its configured margin over the deadline (the commit must reach the vehicle).
     b.replan_lead_s =
         replanLeadFor(b.answer_deadline_s, params.replan_lead_s, params.answer_deadline_s);
+    // After reacting for the lead and the oldest map it flies on, the vehicle must still stop
+    // within what its sensor sees (the start-up check's promise, kept under load): up to
+    // max_answer_deadline_s that holds at full speed, past it the speed comes down.
+    b.speed_limit_mps =
+        std::min(params.max_vel_mps,
+                 speedStoppingWithin(params.sensor_range_m, b.replan_lead_s + params.stale_map_s,
+                                     params.max_acc_mps2));
     b.degraded = true;
     b.why = "answers late (p99 " + std::to_string(static_cast<int>(answer_p99_s * 1e3)) +
             " ms): deadline " + std::to_string(static_cast<int>(b.answer_deadline_s * 1e3)) +
             " ms, lead " + std::to_string(static_cast<int>(b.replan_lead_s * 1e3)) + " ms";
+    if (b.speed_limit_mps < params.max_vel_mps) {
+      char speed[32];
+      std::snprintf(speed, sizeof speed, "%.2f", b.speed_limit_mps);
+      b.why += std::string(", speed lowered to ") + speed + " m/s";
+    }
   }
   if (map_age_p99_s > params.max_map_age_s) {
     b.degraded = true;

@@ -51,6 +51,7 @@ void EamNode::onPlanRequest(const plan_request_t& req) {
   eam::PlanRequest request;
   request.start = startStateOf(req);
   request.target = toVec3(req.target);
+  request.max_speed_mps = req.max_speed_mps;
   // The reference is the committed trajectory; only its part from start_utime on is the guess.
   if (req.reference.num_pieces > 0) {
     const Trajectory committed = fromMsg(req.reference);

@@ -1,4 +1,5 @@
 #include "mmh/eam/planner.hpp"
+#include "mmh/common/vehicle_limits.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -543,6 +544,7 @@ std::optional<Planner::RoundsOutcome> Planner::reboundRound(
 }
 
 PlanResult Planner::plan(const VoxelGrid& grid, const PlanRequest& req) {
+  params_.max_vel_mps = speedLimitFor(req.max_speed_mps, vehicle_max_vel_mps_);
   PlanResult r;
   const EamParams& P = params_;
   // --- input checks -----------------------------------------------------------------------

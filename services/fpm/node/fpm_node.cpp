@@ -30,6 +30,7 @@ plan_result_t FpmNode::answer(const fpm::Planner& planner, const plan_request_t&
     request.start = startStateOf(msg);
     request.target = toVec3(msg.target);
     request.waypoints = getWaypoints(msg);
+    request.max_speed_mps = msg.max_speed_mps;
     r = planner.plan(request);
   }
   const auto t1 = std::chrono::steady_clock::now();

@@ -1,4 +1,5 @@
 #include "mmh/fpm/planner.hpp"
+#include "mmh/common/vehicle_limits.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -71,6 +72,14 @@ bool Planner::validate(const Request& r, Result& out) const {
 }
 
 Result Planner::plan(const Request& request) const {
+  const double speed_limit = speedLimitFor(request.max_speed_mps, params_.max_vel_mps);
+  if (speed_limit < params_.max_vel_mps) {
+    Params slower = params_;
+    slower.max_vel_mps = speed_limit;
+    Request at_limit = request;
+    at_limit.max_speed_mps = 0.0;
+    return Planner(slower).plan(at_limit);
+  }
   Result out;
   if (!validate(request, out)) return out;
   // A guess that is not exactly inside the limits (sideways starts, corners) or a result that

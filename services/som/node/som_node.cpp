@@ -41,7 +41,7 @@ void SomNode::onPlanRequest(const plan_request_t& req) {
     answer(req, result, wallTimeUs() - t0);
     return;
   }
-  last_ = planner_.plan(receiver_.grid(), startStateOf(req), toVec3(req.target));
+  last_ = planner_.plan(receiver_.grid(), startStateOf(req), toVec3(req.target), req.max_speed_mps);
   const int64_t compute_us = wallTimeUs() - t0;
   const som::PlanTimings& t = last_.timings;
   char split[240];

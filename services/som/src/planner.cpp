@@ -1,4 +1,5 @@
 #include "mmh/som/planner.hpp"
+#include "mmh/common/vehicle_limits.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -10,7 +11,9 @@
 namespace mmh::som {
 
 Planner::Planner(const SomParams& params)
-    : params_(params), optimizer_(params.optimizer, params.max_vel_mps, params.max_acc_mps2) {}
+    : params_(params),
+      vehicle_max_vel_mps_(params.max_vel_mps),
+      optimizer_(params.optimizer, params.max_vel_mps, params.max_acc_mps2) {}
 
 namespace {
 
@@ -58,8 +61,10 @@ std::vector<Eigen::Vector3d> withoutCollinearPoints(const std::vector<Eigen::Vec
 }  // namespace
 
 PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
-                         const Eigen::Vector3d& target) {
+                         const Eigen::Vector3d& target, double max_speed_mps) {
   const StepTimer whole;
+  params_.max_vel_mps = speedLimitFor(max_speed_mps, vehicle_max_vel_mps_);
+  optimizer_.setMaxVel(params_.max_vel_mps);
   PlanOutput out;
   auto finish = [&](PlanStatus status, const std::string& detail) -> PlanOutput& {
     out.status = status;

@@ -859,6 +859,71 @@ TEST_F(ArbiterRules, LateAnswersLengthenTheBudgetUntilTheLoadGoes) {
   EXPECT_EQ(a->latencyBudget().replan_lead_s, params_.replan_lead_s);
 }
 
+TEST_F(ArbiterRules, AnswersLaterThanTheFullSpeedDeadlineSlowTheVehicleUntilTheLoadGoes) {
+  auto a = started(Policy::kMmh);
+  // A first plan that reaches nearly 3 m/s, flown to its fastest part.
+  const PlanRequestOut first = a->takeRequests().at(0);
+  ModeAnswer fast = okAnswer(first);
+  fast.trajectory = mmh::test::planFrom(first.start, first.target,
+                                        1.875 * (first.target - first.start.position).norm() / 2.9);
+  ASSERT_LE(fast.trajectory.maxAcceleration(), params_.max_acc_mps2);
+  a->onAnswer(fast, at(0.001));
+  ASSERT_TRUE(a->takeCommit());
+  const double t1 = std::floor(0.4 * a->committed().duration() * 10.0) / 10.0;
+  ASSERT_TRUE(fly(*a, 0.01, t1).empty());
+  const KinematicState cruise = a->committed().state((at(t1) - a->committedStartUtime()) * 1e-6);
+  // A new goal: its round is answered 0.3 s late (a loaded computer).
+  std::string why;
+  ASSERT_TRUE(a->setGoal(2, Vector3d(28, 2, 1.2), at(t1), &why)) << why;
+  a->setAwareness(true, 0, 2, map_seq_);
+  a->onOdometry(cruise, at(t1));
+  const std::vector<PlanRequestOut> round = a->takeRequests();
+  ASSERT_EQ(round.size(), 1u);
+  EXPECT_EQ(round[0].max_speed_mps, params_.max_vel_mps);
+  a->onAnswer(okAnswer(round[0]), at(t1 + 0.3));
+  EXPECT_FALSE(a->takeCommit());  // after its start time
+  const double limit = a->latencyBudget().speed_limit_mps;
+  EXPECT_LT(limit, params_.max_vel_mps);
+  EXPECT_NE(a->latencyBudget().why.find("speed lowered to"), std::string::npos);
+
+  // The committed trajectory, faster than that, is slowed down along its path.
+  const Trajectory before = a->committed();
+  std::optional<CommitOut> slowed;
+  std::string details;
+  double t = t1 + 0.3;
+  for (; t < t1 + 1.0 && !slowed; t += 0.01) {
+    const int64_t now = at(t);
+    if (std::lround(t * 100) % 10 == 0) a->onMapUpdated(grid_, ++map_seq_, now, now);
+    a->onOdometry(a->committed().state((now - a->committedStartUtime()) * 1e-6), now);
+    for (const auto& d : a->takeDecisions()) details += d.detail + "\n";
+    a->takeRequests();
+    slowed = a->takeCommit();
+  }
+  ASSERT_TRUE(slowed.has_value());
+  for (const auto& d : a->takeDecisions()) details += d.detail + "\n";
+  EXPECT_NE(slowed->mode, Mode::kStop) << details;
+  EXPECT_NE(details.find("slowing down to"), std::string::npos) << details;
+  EXPECT_EQ(a->counters().slowdowns, 1);
+  const Trajectory& slow = slowed->trajectory;
+  const double start_s = (slowed->start_utime - a->committedStartUtime()) * 1e-6;
+  EXPECT_NEAR(start_s, 0.0, 1e-9);
+  EXPECT_LT((slow.position(slow.duration()) - before.position(before.duration())).norm(), 1e-6);
+  EXPECT_LE(slow.tail(slow.duration() / 2).maxSpeed(), limit * 1.02);
+  EXPECT_FALSE(mmh::firstCollisionTime(grid_, slow, 0.0, slow.duration()).has_value());
+
+  // The next rounds ask for no more than the limit (or the speed the vehicle still has).
+  std::vector<PlanRequestOut> next;
+  for (; t < t1 + 20.0 && next.empty(); t += 0.01) next = fly(*a, t, t);
+  ASSERT_FALSE(next.empty());
+  const double start_speed = next[0].start.velocity.norm();
+  EXPECT_NEAR(next[0].max_speed_mps, std::max(limit, start_speed), 1e-9);
+
+  // latency_window_s without slow answers: full speed again.
+  const int64_t later = at(t) + static_cast<int64_t>(params_.latency_window_s * 1e6) + 10'000;
+  a->onMapUpdated(grid_, ++map_seq_, later, later);
+  EXPECT_EQ(a->latencyBudget().speed_limit_mps, params_.max_vel_mps);
+}
+
 // A goal the user put into a tree moves to the nearest free point, and the decision says where.
 TEST_F(ArbiterRules, AGoalInsideAnObstacleMovesToTheNearestFreePointAndSaysWhere) {
   putPillar(5.0, 0.0, 0.5);

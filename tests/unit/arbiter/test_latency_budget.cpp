@@ -1,6 +1,8 @@
 // The latency monitor and the latency budget rule, against known answers.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "mmh/arbiter/latency_monitor.hpp"
 #include "mmh/arbiter/replan_rules.hpp"
 
@@ -69,9 +71,38 @@ TEST(LatencyBudget, LateAnswersLengthenDeadlineAndLeadUpToTheCap) {
   EXPECT_NEAR(b.replan_lead_s, 0.16, 1e-12);      // keeps its 10 ms over the deadline
   EXPECT_TRUE(b.degraded);
   EXPECT_NE(b.why.find("answers late"), std::string::npos);
+  EXPECT_EQ(b.speed_limit_mps, p.max_vel_mps);  // within the full-speed deadline
   const LatencyBudget capped = latencyBudget(2.0, 0.0, p);
-  EXPECT_NEAR(capped.answer_deadline_s, p.max_answer_deadline_s, 1e-12);
-  EXPECT_NEAR(capped.replan_lead_s, p.max_answer_deadline_s + 0.01, 1e-12);
+  EXPECT_NEAR(capped.answer_deadline_s, p.max_slowed_answer_deadline_s, 1e-12);
+  EXPECT_NEAR(capped.replan_lead_s, p.max_slowed_answer_deadline_s + 0.01, 1e-12);
+}
+
+// Defaults: 3 m/s, 2 m/s^2, a 4.5 m sensor, maps up to stale_map_s = 0.5 s old. Up to the
+// full-speed deadline (0.2 s) the vehicle may fly at full speed; past it the speed comes down so
+// that reacting for the lead and the map's age and then braking still ends within the sensor's
+// range, and returns when the answers are fast again.
+TEST(LatencyBudget, AnswersLaterThanTheFullSpeedDeadlineLowerTheSpeed) {
+  ArbiterParams p;
+  const double full_speed_p99 = p.max_answer_deadline_s / p.latency_headroom;
+  EXPECT_EQ(latencyBudget(full_speed_p99, 0.0, p).speed_limit_mps, p.max_vel_mps);
+  double previous = p.max_vel_mps;
+  for (double p99 : {0.2, 0.4, 0.6}) {
+    const LatencyBudget b = latencyBudget(p99, 0.0, p);
+    EXPECT_NEAR(b.answer_deadline_s, p.latency_headroom * p99, 1e-12);
+    EXPECT_LT(b.speed_limit_mps, previous) << p99;
+    EXPECT_GT(b.speed_limit_mps, 0.5) << p99;
+    // The stop after the reaction ends exactly at the sensor's range.
+    const double v = b.speed_limit_mps;
+    EXPECT_NEAR(v * v / (2.0 * p.max_acc_mps2) + v * (b.replan_lead_s + p.stale_map_s),
+                p.sensor_range_m, 1e-9);
+    EXPECT_TRUE(b.degraded);
+    EXPECT_NE(b.why.find("speed lowered to"), std::string::npos) << b.why;
+    previous = v;
+  }
+  // 0.6 s x 1.5 = 0.9 s deadline, 0.91 s lead: v^2 / 4 + 1.41 v = 4.5 gives 2.39 m/s.
+  EXPECT_NEAR(latencyBudget(0.6, 0.0, p).speed_limit_mps,
+              2.0 * (std::sqrt(1.41 * 1.41 + 4.5) - 1.41), 1e-9);
+  EXPECT_EQ(latencyBudget(0.01, 0.0, p).speed_limit_mps, p.max_vel_mps);
 }
 
 TEST(LatencyBudget, LateMapsAreDegradedWithoutChangingTheBudget) {

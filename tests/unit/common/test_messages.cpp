@@ -267,6 +267,14 @@ TEST(Messages, ValidatorsRefuseAbsurdTimesModesAndIds) {
   EXPECT_TRUE(mmh::validate(r, &why)) << why;
   r.deadline_utime = int64_t{1} << 62;
   EXPECT_FALSE(mmh::validate(r, &why));
+  r.deadline_utime = 0;
+  r.max_speed_mps = 2.4;  // the arbiter's lowered limit
+  EXPECT_TRUE(mmh::validate(r, &why)) << why;
+  for (double bad : {-1.0, double(NAN), double(INFINITY)}) {
+    r.max_speed_mps = bad;
+    EXPECT_FALSE(mmh::validate(r, &why)) << bad;
+    EXPECT_NE(why.find("max_speed_mps"), std::string::npos);
+  }
 
   mmh::VoxelGrid grid(0.1, Eigen::Vector3i(0, 0, 0), Eigen::Vector3i(4, 4, 4));
   mmh::local_map_t m = mmh::makeKeyframe(grid, 1);

@@ -187,3 +187,67 @@ TEST(StoppingTrajectory, SaferStopOrdersTouchThenUnknownThenClearance) {
   EXPECT_FALSE(saferStop(known_near, known_far, kTouch));
   EXPECT_TRUE(saferStop(StopAssessment{0.18, 0.0}, touching, kTouch));  // both touch: clearance
 }
+
+namespace {
+
+// A cruise along x: from rest at the origin to rest 20 m on, at up to about 3 m/s (4 pieces).
+mmh::Trajectory cruise() {
+  mmh::MincoJerk m;
+  Eigen::Matrix3d head, tail;
+  head << Eigen::Vector3d(0, 0, 1.2), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero();
+  tail << Eigen::Vector3d(20, 3, 1.2), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero();
+  m.setConditions(head, tail, 4);
+  Eigen::Matrix3Xd inner(3, 3);
+  inner << 3, 10, 17, 0, 2, 3, 1.2, 1.2, 1.2;
+  m.setParameters(inner, Eigen::Vector4d(2.2, 2.6, 2.6, 2.2));
+  return m.trajectory();
+}
+
+std::vector<Eigen::Vector3d> samplesOf(const mmh::Trajectory& t) {
+  std::vector<Eigen::Vector3d> out;
+  for (double s = 0.0; s <= t.duration(); s += 0.005) out.push_back(t.position(s));
+  return out;
+}
+
+}  // namespace
+
+// Answers come late, so the arbiter lowers the speed: the vehicle slows down on the path it
+// flies, from exactly its state, within a_max, and flies the rest of it no faster than allowed.
+TEST(SlowdownTrajectory, SlowsDownAlongThePathToTheAllowedSpeedAndEndsWhereItEnds) {
+  const mmh::Trajectory path = cruise();
+  ASSERT_GT(path.maxSpeed(), 2.8);
+  const std::vector<Eigen::Vector3d> on_path = samplesOf(path);
+  for (double allowed : {2.0, 1.2}) {
+    const double t0 = 2.5;
+    const mmh::Trajectory slow = mmh::makeSlowdownTrajectory(path, t0, allowed, 2.0);
+    ASSERT_FALSE(slow.empty()) << allowed;
+    const mmh::KinematicState s = path.state(t0);
+    EXPECT_LT((slow.position(0) - s.position).norm(), 1e-9);
+    EXPECT_LT((slow.velocity(0) - s.velocity).norm(), 1e-9);
+    EXPECT_LT((slow.acceleration(0) - s.acceleration).norm(), 1e-9);
+    EXPECT_LT((slow.position(slow.duration()) - path.position(path.duration())).norm(), 1e-9);
+    EXPECT_LT(slow.velocity(slow.duration()).norm(), 1e-9);
+    EXPECT_LE(slow.maxAcceleration(), 2.0 * (1.0 + 1e-6));
+    // Slower than allowed (up to the fit's 2 %) once twice the stopping distance at the start
+    // speed is flown (the transition brakes at 0.6 a_max on average), never faster than the path.
+    const double settled_m = s.velocity.norm() * s.velocity.norm() / 2.0;
+    double travelled = 0.0;
+    for (double t = 0.0; t < slow.duration(); t += 0.01) {
+      travelled += slow.velocity(t).norm() * 0.01;
+      if (travelled > settled_m + 0.5) {
+        EXPECT_LE(slow.velocity(t).norm(), allowed * 1.02) << t;
+      }
+      EXPECT_LE(slow.velocity(t).norm(), path.maxSpeed() * 1.0001);
+      // The same curve: within 2 cm of the path everywhere.
+      EXPECT_LT(distanceToSamples(on_path, slow.position(t)), 0.02) << t;
+    }
+    EXPECT_GT(slow.duration(), path.duration() - t0);
+  }
+}
+
+TEST(SlowdownTrajectory, NothingToDoWhenThePathIsSlowEnough) {
+  const mmh::Trajectory path = cruise();
+  EXPECT_TRUE(mmh::makeSlowdownTrajectory(path, 1.0, path.maxSpeed() + 0.1, 2.0).empty());
+  // Past the fastest part: what is left is slower than allowed.
+  EXPECT_TRUE(mmh::makeSlowdownTrajectory(path, path.duration() - 0.5, 1.0, 2.0).empty());
+}

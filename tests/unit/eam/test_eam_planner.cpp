@@ -508,3 +508,19 @@ TEST(EamVerification, ExactMaximaAgreeWithTheGeneralRoutine) {
     EXPECT_NEAR(v.max_acc, t.maxAcceleration(), 1e-9 * (1.0 + v.max_acc));
   }
 }
+
+// The arbiter lowers the speed when answers come late: the swerve keeps to the request's limit.
+TEST(EamPlanner, KeepsToTheSpeedLimitOfTheRequest) {
+  mmh::VoxelGrid g = eam_test::freeGrid();
+  eam_test::addPillar(g, 5.0, 0.05, 0.5);
+  auto p = params();
+  mmh::eam::Planner planner(p);
+  PlanRequest req = request(Vector3d(0, 0, 1.2), Vector3d(10, 0, 1.2), 5.0);
+  req.max_speed_mps = 1.5;
+  const PlanResult slow = planner.plan(g, req);
+  p.max_vel_mps = 1.5;
+  expectValid(g, req, slow, p);
+  const PlanResult full = planner.plan(g, request(Vector3d(0, 0, 1.2), Vector3d(10, 0, 1.2), 5.0));
+  ASSERT_TRUE(full.ok) << full.detail;
+  EXPECT_GT(full.trajectory.maxSpeed(), 1.5 * 1.05);
+}

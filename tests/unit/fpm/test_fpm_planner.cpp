@@ -256,3 +256,22 @@ TEST(FpmParams, ConfigValuesAreRangeChecked) {
                    fpm_ok)),
                mmh::ConfigError);
 }
+
+// The arbiter lowers the speed when answers come late: the plan keeps to the request's limit,
+// and takes correspondingly longer; 0 or a limit above the vehicle's means the vehicle's.
+TEST(FpmPlanner, KeepsToTheSpeedLimitOfTheRequest) {
+  const mmh::fpm::Planner planner(params());
+  mmh::fpm::Request r =
+      request(Vector3d(0, 0, 1.2), Vector3d(1.2, 0, 0), Vector3d::Zero(), Vector3d(15, 3, 1.5));
+  const mmh::fpm::Result full = planner.plan(r);
+  ASSERT_TRUE(full.ok) << full.detail;
+  EXPECT_GT(full.trajectory.maxSpeed(), 2.8);
+  r.max_speed_mps = 1.5;
+  const mmh::fpm::Result slow = planner.plan(r);
+  verify(r, slow, "limited to 1.5 m/s");
+  EXPECT_LE(slow.trajectory.maxSpeed(), 1.5 * (1.0 + 1e-9));
+  EXPECT_GT(slow.trajectory.maxSpeed(), 1.3);
+  EXPECT_GT(slow.trajectory.duration(), full.trajectory.duration() * 1.5);
+  r.max_speed_mps = 10.0;
+  EXPECT_NEAR(planner.plan(r).trajectory.duration(), full.trajectory.duration(), 1e-9);
+}

@@ -293,3 +293,20 @@ TEST(SomVerification, EnteringTheArbitersCheckMarginIsFoundAfterTheStartLeavesIt
   out_and_back.append(line(Vector3d(0.05, 1.0, 1.25), Vector3d(0.25, 0.05, 1.25)).pieces()[0]);
   EXPECT_TRUE(mmh::som::entersCheckMargin(out_and_back, grid, 0.25));
 }
+
+// The arbiter lowers the speed when answers come late: the plan keeps to the request's limit;
+// the next request without one flies at the vehicle's limit again.
+TEST(SomPlanner, KeepsToTheSpeedLimitOfTheRequest) {
+  const auto w = som_test::pillars();
+  mmh::som::Planner planner(testParams());
+  const auto start = atRest(w.start);
+  const mmh::som::PlanOutput slow = planner.plan(*w.grid, start, w.target, 1.5);
+  ASSERT_EQ(slow.status, PlanStatus::kOk) << slow.detail;
+  EXPECT_LE(slow.trajectory.maxSpeed(), 1.5 * 1.01);
+  for (double s = 0.0; s <= slow.trajectory.duration(); s += 1e-3)
+    ASSERT_FALSE(w.grid->isOccupiedPoint(slow.trajectory.position(s))) << "occupied at " << s;
+  const mmh::som::PlanOutput full = planner.plan(*w.grid, start, w.target);
+  expectVerified(w, start, full);
+  EXPECT_GT(full.trajectory.maxSpeed(), 2.0);
+  EXPECT_GT(slow.trajectory.duration(), full.trajectory.duration() * 1.2);
+}

@@ -19,6 +19,15 @@ Trajectory makeStoppingTrajectory(const KinematicState& start, double max_acc_mp
 Trajectory makeStoppingTrajectory(const Trajectory& path, double t0, double max_acc_mps2,
                                   double max_vel_mps);
 
+// Slows down along the path of `path` from its time t0 so that, after a smooth transition, no
+// point of the rest of the path is flown faster than max_speed_mps: the same curve, re-timed by a
+// factor that falls smoothly from 1 to max_speed_mps / (path's top speed after t0), fitted with
+// minimum-jerk pieces; it ends where the path ends, at rest. What the arbiter commits when the
+// speed it allows falls below the committed trajectory's (answers come late). Empty when the
+// path is already slow enough, or too short to slow down on (then stop instead).
+Trajectory makeSlowdownTrajectory(const Trajectory& path, double t0, double max_speed_mps,
+                                  double max_acc_mps2);
+
 // What a stop would meet: its least distance to the occupied cells' centres (at most the limit
 // asked) and how far it runs through cells the map does not know.
 struct StopAssessment {

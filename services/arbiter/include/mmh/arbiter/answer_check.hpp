@@ -16,10 +16,12 @@
 
 namespace mmh::arbiter {
 
-// What was asked: the answer must start at start_utime in exactly this state.
+// What was asked: the answer must start at start_utime in exactly this state, and fly no faster
+// than max_speed_mps (0: the vehicle's max_vel_mps).
 struct RequestedStart {
   int64_t start_utime = 0;
   KinematicState state;
+  double max_speed_mps = 0.0;
 };
 
 // The distance from the start within which an answer must stay in mapped space: the stopping

@@ -32,6 +32,7 @@ struct PlanRequestOut {
   int64_t start_utime = 0;     // the answer must start at this time...
   KinematicState start;        // ...in exactly this state
   int64_t deadline_utime = 0;  // answers after this are ignored
+  double max_speed_mps = 0.0;  // the latency budget's speed limit (never below the start speed)
   int64_t map_seq = 0;
   Eigen::Vector3d target = Eigen::Vector3d::Zero();
   Eigen::Vector3d goal = Eigen::Vector3d::Zero();
@@ -91,8 +92,9 @@ struct ArbiterCounters {
   int not_committed_stale_odom = 0;  // verified answers dropped because ODOMETRY was stale
   int unreachable_goals = 0;         // times a goal was given up for lack of progress
   int back_offs = 0;                 // rounds that backed off to free space while stuck
-  int degraded_periods = 0;          // times the latency budget became degraded
-  int moved_goals = 0;               // goals moved out of an obstacle's margin
+  int slowdowns = 0;         // committed trajectories slowed to the latency budget's speed limit
+  int degraded_periods = 0;  // times the latency budget became degraded
+  int moved_goals = 0;       // goals moved out of an obstacle's margin
 };
 
 class Arbiter {
@@ -176,6 +178,10 @@ class Arbiter {
   StopView stopView(int64_t now) const;
 
   void evaluate(int64_t now);
+  // The latency budget lowered the speed limit below the committed trajectory's speed: commit
+  // that trajectory slowed down along its path (when the slowed one is collision-free), also
+  // while a round is in flight (whose answer, if committed, starts before the slowdown).
+  void slowDownIfTooFast(int64_t now);
   // A new map put the goal into an obstacle's margin: move it to the nearest free point.
   void relocateGoalIfBlocked();
   void reportGoalMoved(const std::string& why);

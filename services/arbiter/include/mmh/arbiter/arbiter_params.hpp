@@ -44,6 +44,12 @@ struct ArbiterParams {
   double latency_window_s = 10.0;
   double latency_headroom = 1.5;
   double max_answer_deadline_s = 0.2;
+  // Past max_answer_deadline_s the deadline grows up to this and the speed is lowered so that,
+  // after the longer reaction, the vehicle still stops within sensor_range_m.
+  double max_slowed_answer_deadline_s = 1.0;
+  double sensor_range_m = 4.5;  // awareness.sensor_range_m
+  // A committed trajectory faster than the lowered limit by more than this fraction is slowed.
+  double slowdown_tolerance = 0.05;
   double max_map_age_s = 0.25;
   double goal_tolerance_m = 0.3;
   double fixed_replan_distance_m = 1.5;  // baselines: replan after this much progress

@@ -148,8 +148,10 @@ bool shouldStop(StopCause cause, const StopView& view, const ArbiterParams& para
 // How long a round may take on this computer: the replan lead (a new trajectory takes effect
 // this long after its request) and the answer deadline, from the answer latencies observed
 // (LatencyMonitor). With answers within answer_deadline_s both stay as configured; slower
-// answers lengthen the deadline to latency_headroom x their p99 (at most max_answer_deadline_s)
-// and the lead with it, so that answers stop missing a deadline the computer cannot meet.
+// answers lengthen the deadline to latency_headroom x their p99 (at most
+// max_slowed_answer_deadline_s) and the lead with it, so that answers stop missing a deadline the
+// computer cannot meet. Past max_answer_deadline_s the speed limit comes down, so that after the
+// longer reaction the vehicle still stops within sensor_range_m.
 // Degraded when the budget is above the configured one or LOCAL_MAP arrives older (p99) than
 // max_map_age_s; `why` says which.
 struct LatencyBudget {
@@ -157,6 +159,7 @@ struct LatencyBudget {
   double map_age_p99_s = 0.0;
   double replan_lead_s = 0.0;
   double answer_deadline_s = 0.0;
+  double speed_limit_mps = 0.0;  // the planners are asked to fly no faster
   bool degraded = false;
   std::string why;
 };

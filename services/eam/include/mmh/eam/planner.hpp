@@ -28,6 +28,7 @@ struct PlanRequest {
   Eigen::Vector3d target = Eigen::Vector3d::Zero();
   // Rest of the committed trajectory from the start time (initial guess); may be empty.
   Trajectory reference;
+  double max_speed_mps = 0.0;  // fly no faster (speedLimitFor); 0: the vehicle's max_vel_mps
 };
 
 struct PlanStats {
@@ -62,7 +63,8 @@ struct PlanResult {
 
 class Planner {
  public:
-  explicit Planner(const EamParams& params) : params_(params), guides_(params) {}
+  explicit Planner(const EamParams& params)
+      : params_(params), vehicle_max_vel_mps_(params.max_vel_mps), guides_(params) {}
   PlanResult plan(const VoxelGrid& grid, const PlanRequest& request);
   // Allocates what a plan on this grid needs (call when a map of a new size arrives).
   void prepare(const VoxelGrid& grid) { guides_.prepare(grid); }
@@ -95,7 +97,8 @@ class Planner {
                                             const CostSettings& settings, GuideStats& guide_stats,
                                             Attempt& attempt, PlanResult& r);
 
-  EamParams params_;
+  EamParams params_;  // max_vel_mps: the speed limit of the current plan
+  double vehicle_max_vel_mps_;
   GuideSearch guides_;
   std::function<void(const std::string&)> trace_;
 };

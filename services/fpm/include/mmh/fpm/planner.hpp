@@ -19,6 +19,7 @@ struct Request {
   KinematicState start;
   Eigen::Vector3d target = Eigen::Vector3d::Zero();
   std::vector<Eigen::Vector3d> waypoints;  // passed in order, at any speed
+  double max_speed_mps = 0.0;              // fly no faster (speedLimitFor); 0: params' max_vel_mps
 };
 
 struct Result {

@@ -54,15 +54,17 @@ class Planner {
   const SomParams& params() const { return params_; }
 
   // Trajectory from `start` (any state within the limits) to `target` at rest on `grid`, whose
-  // inflation radius is the planning margin.
-  PlanOutput plan(const VoxelGrid& grid, const KinematicState& start,
-                  const Eigen::Vector3d& target);
+  // inflation radius is the planning margin, no faster than max_speed_mps (speedLimitFor; 0: the
+  // vehicle's max_vel_mps).
+  PlanOutput plan(const VoxelGrid& grid, const KinematicState& start, const Eigen::Vector3d& target,
+                  double max_speed_mps = 0.0);
   // Sizes the per-cell search arrays for this grid's window (call when a map arrives; cheap
   // unless the window size changed) so that plan() does not pay for it.
   void prepare(const VoxelGrid& grid) { astar_.reserve(grid.numCells()); }
 
  private:
-  SomParams params_;
+  SomParams params_;  // max_vel_mps: the speed limit of the current plan
+  double vehicle_max_vel_mps_;
   GridAStar astar_;
   CorridorBuilder corridor_builder_;
   TrajectoryOptimizer optimizer_;

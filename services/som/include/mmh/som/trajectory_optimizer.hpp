@@ -44,6 +44,7 @@ double smoothedL1(double x, double mu, double* grad);
 class TrajectoryOptimizer {
  public:
   TrajectoryOptimizer(const OptimizerParams& params, double max_vel_mps, double max_acc_mps2);
+  void setMaxVel(double max_vel_mps) { max_vel_ = max_vel_mps; }
 
   // Pieces and initial guess for a trajectory from `start` to `target` (at rest) through the
   // corridor. False if the corridor is empty.
