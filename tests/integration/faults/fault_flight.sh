@@ -6,6 +6,7 @@
 # mode's trajectory is committed on stale ODOMETRY, and the fault is seen where it should be.
 #
 #   fault_flight.sh BUILD_DIR kill-som | restart-mapping | map-loss-10 | map-loss-30 | stale-odometry
+#                             | slow-planners
 #
 # No timing is asserted: the fault is injected a few seconds into the flight, whatever the load.
 set -euo pipefail
@@ -41,6 +42,11 @@ case "$scenario" in
   map-loss-30) export MMH_TEST_INCOMING_LOSS=LOCAL_MAP=0.3 ;;
   stale-odometry)
     checks=(--expect-status "ODOMETRY is stale" --expect-counter mmh-arbiter:odometry_stale) ;;
+  slow-planners)
+    # Answers about 0.45 s late, past the full-speed deadline (0.2 s): the speed comes down and
+    # the committed trajectory is slowed along its path.
+    checks=(--expect-status "slowing down to" --expect-counter mmh-arbiter:slowdowns
+      --expect-counter mmh-arbiter:degraded_periods) ;;
   *) echo "unknown scenario $scenario"; exit 2 ;;
 esac
 case "$scenario" in
@@ -90,6 +96,17 @@ case "$scenario" in
     kill -STOP "$(pid_of mmh-sim)"
     sleep 3
     kill -CONT "$(pid_of mmh-sim)"
+    ;;
+  slow-planners)
+    # A computer too busy for the planners: each runs 50 ms in every 500 ms, for 5 s.
+    planners="$(pid_of mmh-fpm) $(pid_of mmh-som) $(pid_of mmh-eam)"
+    echo "planners (pids $planners) stopped 450 ms in every 500 ms for 5 s"
+    for _ in $(seq 10); do
+      kill -STOP $planners
+      sleep 0.45
+      kill -CONT $planners
+      sleep 0.05
+    done
     ;;
 esac
 
