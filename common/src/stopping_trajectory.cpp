@@ -107,11 +107,11 @@ Trajectory makeStoppingTrajectory(const Trajectory& path, double t0, double max_
 }
 
 Trajectory makeSlowdownTrajectory(const Trajectory& path, double t0, double max_speed_mps,
-                                  double max_acc_mps2) {
+                                  double max_acc_mps2, double tolerance) {
   const double end = path.duration();
   if (t0 >= end - 1e-3 || max_speed_mps <= 0.0) return Trajectory();
   const double top_speed = path.tail(t0).maxSpeed();
-  if (top_speed <= max_speed_mps) return Trajectory();
+  if (top_speed <= max_speed_mps * (1.0 + tolerance)) return Trajectory();
   const KinematicState start = path.state(t0);
   const double speed = start.velocity.norm();
   const double ratio = max_speed_mps / top_speed;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <utility>
 
 #include "mmh/arbiter/goal_placement.hpp"
@@ -277,16 +276,14 @@ StopView Arbiter::stopView(int64_t now) const {
 
 void Arbiter::evaluate(int64_t now) {
   if (!hasGoal() || !odometry_) return;
-  if (round_) {
-    if (now > round_->deadline_utime) {
-      decide(now, true);
-    } else if (!odometryStale(now)) {
-      slowDownIfTooFast(now);
-    }
+  if (round_ && now > round_->deadline_utime) {
+    decide(now, true);
     return;
   }
-  if (phase_ == Phase::kReached) return;
-  if (odometryStale(now)) {
+  const bool odometry_stale = odometryStale(now);
+  if (!odometry_stale) slowDownIfTooFast(now);
+  if (round_ || phase_ == Phase::kReached) return;
+  if (odometry_stale) {
     onStaleOdometry(now);
     return;
   }
@@ -299,7 +296,6 @@ void Arbiter::evaluate(int64_t now) {
     pushDecision(d);
     return;
   }
-  slowDownIfTooFast(now);
   // A planner needs a map; awareness-driven policies also wait for an awareness of this goal.
   if (mapStale(now)) {
     if (shouldStop(StopCause::kStaleMap, stopView(now), params_)) {
@@ -347,18 +343,14 @@ void Arbiter::slowDownIfTooFast(int64_t now) {
   if (!hasCommitted() || committed_.mode == Mode::kStop || limit_mps >= params_.max_vel_mps) return;
   // Not over a commit still to be sent; and a round in flight may still commit its answer, which
   // starts in the state of the trajectory it was asked from: the slowdown may only begin after it.
-
   if (commit_) return;
   const int64_t start = now + static_cast<int64_t>(budget_.replan_lead_s * 1e6);
   if (round_ && start < round_->start.start_utime) return;
-  const double t0 = (start - committed_.start_utime) * kUs;
-  const Trajectory& path = committed_.trajectory;
-  if (t0 >= path.duration() ||
-      path.tail(t0).maxSpeed() <= limit_mps * (1.0 + params_.slowdown_tolerance)) {
-    return;
-  }
-  const Trajectory slow = makeSlowdownTrajectory(path, t0, limit_mps, params_.max_acc_mps2);
-  // Too short to slow down on, or the fitted curve meets an obstacle: the usual rules go on.
+  const Trajectory slow =
+      makeSlowdownTrajectory(committed_.trajectory, (start - committed_.start_utime) * kUs,
+                             limit_mps, params_.max_acc_mps2, params_.slowdown_tolerance);
+  // Slow enough already, too short to slow down on, or the fitted curve meets an obstacle: the
+  // usual rules go on.
   if (slow.empty() || (grid_ && firstCollisionTime(*grid_, slow, 0.0, slow.duration()))) return;
   commit(slow, start, committed_.mode, committed_.ends_at_goal);
   ++counters_.slowdowns;
@@ -367,9 +359,7 @@ void Arbiter::slowDownIfTooFast(int64_t now) {
   d.committed_mode = committed_.mode;
   d.trajectory_id = commit_->trajectory_id;
   d.local_target = slow.position(slow.duration());
-  char speed[32];
-  std::snprintf(speed, sizeof speed, "%.2f", limit_mps);
-  d.detail = std::string("slowing down to ") + speed + " m/s: " + budget_.why;
+  d.detail = "slowing down: " + budget_.why;  // it names the speed ("speed lowered to X m/s")
   pushDecision(d);
 }
 

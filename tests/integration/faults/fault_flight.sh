@@ -45,7 +45,7 @@ case "$scenario" in
   slow-planners)
     # Answers about 0.45 s late, past the full-speed deadline (0.2 s): the speed comes down and
     # the committed trajectory is slowed along its path.
-    checks=(--expect-status "slowing down to" --expect-counter mmh-arbiter:slowdowns
+    checks=(--expect-status "slowing down:" --expect-counter mmh-arbiter:slowdowns
       --expect-counter mmh-arbiter:degraded_periods) ;;
   *) echo "unknown scenario $scenario"; exit 2 ;;
 esac

@@ -24,9 +24,10 @@ Trajectory makeStoppingTrajectory(const Trajectory& path, double t0, double max_
 // factor that falls smoothly from 1 to max_speed_mps / (path's top speed after t0), fitted with
 // minimum-jerk pieces; it ends where the path ends, at rest. What the arbiter commits when the
 // speed it allows falls below the committed trajectory's (answers come late). Empty when the
-// path is already slow enough, or too short to slow down on (then stop instead).
+// path is already slow enough (its top speed after t0 within max_speed_mps x (1 + tolerance)),
+// or too short to slow down on (then stop instead).
 Trajectory makeSlowdownTrajectory(const Trajectory& path, double t0, double max_speed_mps,
-                                  double max_acc_mps2);
+                                  double max_acc_mps2, double tolerance = 0.0);
 
 // What a stop would meet: its least distance to the occupied cells' centres (at most the limit
 // asked) and how far it runs through cells the map does not know.
