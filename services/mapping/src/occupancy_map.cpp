@@ -286,8 +286,26 @@ struct Walk {
 
 }  // namespace
 
+void OccupancyMap::keepOccupiedBesideHits(ScanStamps marks) {
+  // A cell mapped occupied beside a surface this scan hit holds part of that surface: a ray
+  // through it may have passed that part by a hair (rays graze a trunk's silhouette, and its
+  // curved front crosses cells diagonally), so this scan does not clear it.
+  uint8_t* const stamps = stamp_.data();
+  for (const Eigen::Vector3i& g : hit_cells_) {
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const Eigen::Vector3i n = g + Eigen::Vector3i(dx, dy, dz);
+          if (!inWindow(n)) continue;
+          const int64_t slot = ringIndex(n);
+          if (stamps[slot] != marks.hit && log_odds_[slot] > occ_threshold_)
+            stamps[slot] = marks.kept;
+        }
+  }
+}
+
 void OccupancyMap::castFree(const Eigen::Vector3d& origin, const Eigen::Vector3d& end,
-                            uint8_t free_stamp, uint8_t occ_stamp) {
+                            uint8_t free_stamp) {
   // The cells from the origin's up to (excluding) the end's, as OctoMap's computeRayKeys. Plain
   // scalars (no arrays indexed by the stepped axis) keep the walk in registers.
   const double inv = 1.0 / res_;
@@ -319,7 +337,8 @@ void OccupancyMap::castFree(const Eigen::Vector3d& origin, const Eigen::Vector3d
         static_cast<uint32_t>(((((rz >> 3) * by) + (ry >> 3)) * bx + (rx >> 3)) << 9 |
                               ((rz & 7) << 6) | ((ry & 7) << 3) | (rx & 7));
     const uint8_t s = stamps[slot];
-    const bool fresh = s != free_stamp && s != occ_stamp;
+    // Stamps grow with the scans: a cell this scan freed, hit or keeps is at free_stamp or above.
+    const bool fresh = s < free_stamp;
     stamps[slot] = fresh ? free_stamp : s;
     list[count] = slot;
     count += fresh;
@@ -448,16 +467,20 @@ size_t OccupancyMap::flush() {
 InsertStats OccupancyMap::insert(const FilteredScan& scan) {
   InsertStats stats;
   if (!has_window_) return stats;
-  // Two stamps per scan; on wrap-around (every 126 scans) every stamp is cleared.
-  if (generation_ >= 126) {
+  // Three stamps per scan, above those of every earlier scan; on wrap-around (every 84 scans)
+  // every stamp is cleared.
+  if (generation_ >= 84) {
     std::fill(stamp_.begin(), stamp_.end(), 0);
     generation_ = 0;
   }
   ++generation_;
-  const uint8_t free_stamp = static_cast<uint8_t>(2 * generation_);
-  const uint8_t occ_stamp = static_cast<uint8_t>(2 * generation_ + 1);
+  const ScanStamps marks{static_cast<uint8_t>(3 * generation_),
+                         static_cast<uint8_t>(3 * generation_ + 1),
+                         static_cast<uint8_t>(3 * generation_ + 2)};
+  const uint8_t occ_stamp = marks.hit;
   occupied_list_.clear();
   free_list_.clear();
+  hit_cells_.clear();
   const double inv = 1.0 / res_;
   for (const Eigen::Vector3f& p : scan.returns) {
     const Eigen::Vector3i g((p.cast<double>() * inv).array().floor().cast<int>());
@@ -469,10 +492,11 @@ InsertStats OccupancyMap::insert(const FilteredScan& scan) {
     if (stamp_[idx] == occ_stamp) continue;
     stamp_[idx] = occ_stamp;
     occupied_list_.push_back(static_cast<uint32_t>(idx));
+    hit_cells_.push_back(g);
   }
+  keepOccupiedBesideHits(marks);
   for (const auto* ends : {&scan.returns, &scan.free_ends}) {
-    for (const Eigen::Vector3f& p : *ends)
-      castFree(scan.origin, p.cast<double>(), free_stamp, occ_stamp);
+    for (const Eigen::Vector3f& p : *ends) castFree(scan.origin, p.cast<double>(), marks.free);
   }
   stats.rays = scan.returns.size() + scan.free_ends.size();
   stats.cells_occupied = occupied_list_.size();

@@ -115,6 +115,37 @@ TEST(OccupancyMap, SameVoxelsAndLogOddsAsOctoMapInsertPointCloud) {
   EXPECT_NEAR(static_cast<double>(map.octreeLeaves()), static_cast<double>(leaves), 0.005 * leaves);
 }
 
+TEST(OccupancyMap, ARayGrazingASurfaceDoesNotClearTheCellsBesideWhatTheScanHit) {
+  // A trunk's side seen at a glancing angle: the cell (2, 0, 12) was mapped occupied; in the
+  // next scans a ray ends on the surface in the cell beside it, (2, 1, 12), and another ray
+  // passes through (2, 0, 12) to a tree farther on. That ray may have passed the surface by a
+  // hair: the cell stays occupied. The lone hit of the first scan, crossed the same way with no
+  // hit beside it, is cleared.
+  mmh::mapping::MappingParams params;
+  mmh::mapping::OccupancyMap map(params);
+  const Vector3d origin(0.05, 0.05, 1.25);
+  map.followVehicle(origin);
+  const Vector3d hit_cell(0.25, 0.05, 1.25);  // centre of the cell (2, 0, 12)
+  mmh::mapping::FilteredScan first;
+  first.origin = origin;
+  first.range_m = 5.0;
+  first.returns = {hit_cell.cast<float>(), Eigen::Vector3f(0.25f, -1.05f, 1.25f)};
+  map.insert(first);
+  ASSERT_EQ(map.query(hit_cell), Occupancy::kOccupied);
+  ASSERT_EQ(map.query(Vector3d(0.25, -1.05, 1.25)), Occupancy::kOccupied);
+  // Cells beside a hit that are not mapped occupied are cleared as usual: the one in front of it.
+  EXPECT_EQ(map.query(Vector3d(0.15, 0.05, 1.25)), Occupancy::kFree);
+  mmh::mapping::FilteredScan grazing = first;
+  grazing.returns = {Eigen::Vector3f(0.25f, 0.15f, 1.25f),    // beside the first hit
+                     Eigen::Vector3f(3.05f, 0.05f, 1.25f),    // through it, to a farther tree
+                     Eigen::Vector3f(1.05f, -5.45f, 1.25f)};  // through the lone hit
+  for (int k = 0; k < 5; ++k) map.insert(grazing);
+  EXPECT_EQ(map.query(hit_cell), Occupancy::kOccupied);
+  EXPECT_EQ(map.query(Vector3d(0.25, -1.05, 1.25)), Occupancy::kFree);
+  // Cells between the sensor and the surface are cleared as before.
+  EXPECT_EQ(map.query(Vector3d(1.55, 0.05, 1.25)), Occupancy::kFree);
+}
+
 TEST(OccupancyMap, WindowFollowsTheVehicleAndRemembersWhatItLeft) {
   const mmh::sim::ForestWorld world = mmh::test::smallForest();
   mmh::mapping::MappingParams params;

@@ -107,8 +107,16 @@ class OccupancyMap {
   }
   void shiftStates(const Eigen::Vector3i& shift);
   void setKnown(int64_t ring, const Eigen::Vector3i& g, float log_odds, octomap::OcTreeNode* node);
-  void castFree(const Eigen::Vector3d& origin, const Eigen::Vector3d& end, uint8_t free_stamp,
-                uint8_t occ_stamp);
+  // This scan's marks in stamp_.
+  struct ScanStamps {
+    uint8_t free, hit, kept;
+  };
+  // Adds the cells the ray crosses to free_list_, but none this scan stamped already (freed, hit
+  // or kept: stamps at or above free_stamp).
+  void castFree(const Eigen::Vector3d& origin, const Eigen::Vector3d& end, uint8_t free_stamp);
+  // Stamps as kept the neighbours of this scan's hit cells that are mapped occupied: this scan
+  // does not clear them.
+  void keepOccupiedBesideHits(ScanStamps marks);
   void apply(uint32_t slot, float delta, InsertStats* stats);
   Occupancy stateOf(float log_odds) const {
     return log_odds > occ_threshold_ ? Occupancy::kOccupied : Occupancy::kFree;
@@ -129,9 +137,10 @@ class OccupancyMap {
   Eigen::Vector3i ring_ = Eigen::Vector3i::Zero(), bricks_ = Eigen::Vector3i::Zero();
   std::vector<octomap::OcTreeNode*> node_;  // leaf at full depth, or null (unknown / pruned)
   std::vector<float> log_odds_;             // NaN = unknown
-  std::vector<uint8_t> stamp_;              // per-scan marks: 2 gen = free, 2 gen + 1 = hit
+  std::vector<uint8_t> stamp_;              // per-scan marks: 3 gen = free, + 1 = hit, + 2 = kept
   uint8_t generation_ = 0;
   std::vector<uint32_t> occupied_list_, free_list_;  // ring slots touched by the scan
+  std::vector<Eigen::Vector3i> hit_cells_;           // global cells of occupied_list_
   std::vector<uint8_t> dirty_;                       // per slot: changed since the last flush
   std::vector<uint32_t> dirty_list_;
   std::vector<int64_t> changed_;  // packed global cells whose state changed
