@@ -291,7 +291,8 @@ void OccupancyMap::keepOccupiedBesideHits(ScanStamps marks) {
   // through it may have passed that part by a hair (rays graze a trunk's silhouette, and its
   // curved front crosses cells diagonally), so this scan does not clear it.
   uint8_t* const stamps = stamp_.data();
-  for (const Eigen::Vector3i& g : hit_cells_) {
+  for (const uint32_t hit : occupied_list_) {
+    const Eigen::Vector3i g = cellOfSlot(hit);
     for (int dz = -1; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
@@ -477,10 +478,8 @@ InsertStats OccupancyMap::insert(const FilteredScan& scan) {
   const ScanStamps marks{static_cast<uint8_t>(3 * generation_),
                          static_cast<uint8_t>(3 * generation_ + 1),
                          static_cast<uint8_t>(3 * generation_ + 2)};
-  const uint8_t occ_stamp = marks.hit;
   occupied_list_.clear();
   free_list_.clear();
-  hit_cells_.clear();
   const double inv = 1.0 / res_;
   for (const Eigen::Vector3f& p : scan.returns) {
     const Eigen::Vector3i g((p.cast<double>() * inv).array().floor().cast<int>());
@@ -489,10 +488,9 @@ InsertStats OccupancyMap::insert(const FilteredScan& scan) {
       continue;
     }
     const int64_t idx = ringIndex(g);
-    if (stamp_[idx] == occ_stamp) continue;
-    stamp_[idx] = occ_stamp;
+    if (stamp_[idx] == marks.hit) continue;
+    stamp_[idx] = marks.hit;
     occupied_list_.push_back(static_cast<uint32_t>(idx));
-    hit_cells_.push_back(g);
   }
   keepOccupiedBesideHits(marks);
   for (const auto* ends : {&scan.returns, &scan.free_ends}) {

@@ -140,7 +140,6 @@ class OccupancyMap {
   std::vector<uint8_t> stamp_;              // per-scan marks: 3 gen = free, + 1 = hit, + 2 = kept
   uint8_t generation_ = 0;
   std::vector<uint32_t> occupied_list_, free_list_;  // ring slots touched by the scan
-  std::vector<Eigen::Vector3i> hit_cells_;           // global cells of occupied_list_
   std::vector<uint8_t> dirty_;                       // per slot: changed since the last flush
   std::vector<uint32_t> dirty_list_;
   std::vector<int64_t> changed_;  // packed global cells whose state changed
