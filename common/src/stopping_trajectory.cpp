@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <vector>
 
 #include "mmh/common/collision_check.hpp"
 #include "mmh/common/minco.hpp"
@@ -24,19 +26,119 @@ double longestStop(double speed, double max_acc_mps2) {
   return 4.0 * speed / max_acc_mps2 + 2.0;
 }
 
-}  // namespace
+// How long braking first takes to build up and to fade: short enough to stop nearly as a bang-bang
+// stop would, long enough for the minimum-jerk pieces (0.15 s) to follow.
+constexpr double kFirstBrakeRampS = 0.2;
+constexpr double kWarpStepS = 0.002;
 
-Trajectory makeStoppingTrajectory(const KinematicState& start, double max_acc_mps2,
-                                  double max_vel_mps) {
-  const double speed = start.velocity.norm();
-  if (speed < 1e-3 && start.acceleration.norm() < 1e-3) {
-    Piece hold;
-    hold.duration = 1.0;
-    hold.coeffs.col(0) = start.position;
-    return Trajectory({hold});
+// Below this speed braking is all build-up and fade: the three-piece stop.
+constexpr double kNearlyAtRestMps = 0.05;
+
+// Time warp of a stop along a path: path time tau at equal steps of stop time, from tau = t0
+// (at the path's own pace) to rest. The warp rate sigma = dtau/dt falls as fast as the
+// acceleration budget allows: the vehicle's acceleration p''(tau) sigma^2 + p'(tau) sigma' stays
+// within acc_budget, so a bend's centripetal part is paid for first and braking takes the rest.
+// sigma' ramps in and out over ramp_s, so the acceleration is continuous at the start and zero
+// at rest. Where the path alone is over the budget (a bend flown at a_max) braking follows the
+// ramp: slowing down lowers the bend's part as fast as braking adds its own. Empty when the path
+// ends before the vehicle would be at rest.
+std::vector<double> brakingWarp(const Trajectory& path, double t0, double acc_budget, double ramp_s,
+                                double longest_s) {
+  const double speed = path.velocity(t0).norm();
+  const double jerk = acc_budget / std::max(speed, 1e-3) / ramp_s;  // in sigma''
+  std::vector<double> taus{t0};
+  double tau = t0, sigma = 1.0, rate = 0.0;  // rate = sigma'
+  while (sigma > 1e-6) {
+    if (taus.size() * kWarpStepS > longest_s) return {};
+    const Eigen::Vector3d b = path.velocity(tau);
+    const Eigen::Vector3d c = path.acceleration(tau) * sigma * sigma;
+    // Most negative sigma' with |c + b sigma'| <= acc_budget (or the least violation).
+    const double qa = b.squaredNorm();
+    const double qb = 2.0 * b.dot(c);
+    const double disc = qb * qb - 4.0 * qa * (c.squaredNorm() - acc_budget * acc_budget);
+    double lowest, highest;
+    if (qa < 1e-12) {
+      lowest = highest = -INFINITY;
+    } else if (disc < 0.0) {
+      lowest = -INFINITY;
+      highest = 0.0;
+    } else {
+      lowest = (-qb - std::sqrt(disc)) / (2.0 * qa);
+      highest = (-qb + std::sqrt(disc)) / (2.0 * qa);
+    }
+    // Braking builds up and fades at a bounded jerk; the budget may force it faster.
+    const double ramped =
+        std::max({lowest, rate - jerk * kWarpStepS, -std::sqrt(2.0 * jerk * sigma)});
+    rate = std::min({ramped, highest, 0.0});
+    if (!std::isfinite(rate)) rate = -sigma / kWarpStepS;
+    const double next = std::max(0.0, sigma + rate * kWarpStepS);
+    tau += 0.5 * (sigma + next) * kWarpStepS;
+    sigma = next;
+    if (tau >= path.duration()) return {};
+    taus.push_back(tau);
   }
-  // Three minimum-jerk pieces whose junctions follow a constant deceleration: close to the
-  // bang-bang stop, with bounded jerk. Lengthen the stop until the exact maxima fit the limits.
+  return taus;
+}
+
+// Braking along `path` from its time t0 (brakingWarp), fitted with minimum-jerk pieces through
+// points of the re-timed curve; nothing when the path ends first or no fit keeps the limits.
+std::optional<Trajectory> brakeAlong(const Trajectory& path, double t0, double max_acc_mps2,
+                                     double max_vel_mps) {
+  const KinematicState start = path.state(t0);
+  const double speed = start.velocity.norm();
+  const double speed_limit = std::max(max_vel_mps, speed);
+  const double acc_limit = accelerationLimit(start, max_acc_mps2);
+  // The fit may bulge over the warp's acceleration, and a bend flown near a_max leaves little to
+  // brake with: brake more gently and build up more slowly until it fits.
+  double budget = 0.95 * acc_limit;
+  for (double ramp_s = kFirstBrakeRampS; ramp_s < 2.5; ramp_s *= 1.25, budget *= 0.95) {
+    const std::vector<double> taus =
+        brakingWarp(path, t0, budget, ramp_s, 1.5 * longestStop(speed, max_acc_mps2));
+    if (taus.empty()) return std::nullopt;
+    const double total = (taus.size() - 1) * kWarpStepS;
+    auto warp = [&](double t) {
+      const double at = std::clamp(t / kWarpStepS, 0.0, static_cast<double>(taus.size() - 1));
+      const size_t i = std::min(static_cast<size_t>(at), taus.size() - 2);
+      return taus[i] + (at - i) * (taus[i + 1] - taus[i]);
+    };
+    const int pieces = std::max(3, static_cast<int>(std::ceil(total / 0.15)));
+    MincoJerk minco;
+    Eigen::Matrix3d head, tail;
+    head << start.position, start.velocity, start.acceleration;
+    tail << path.position(taus.back()), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero();
+    minco.setConditions(head, tail, pieces);
+    Eigen::Matrix3Xd inner(3, pieces - 1);
+    for (int i = 1; i < pieces; ++i) inner.col(i - 1) = path.position(warp(total * i / pieces));
+    minco.setParameters(inner, Eigen::VectorXd::Constant(pieces, total / pieces));
+    Trajectory stop = minco.trajectory();
+    if (stop.maxAcceleration() <= acc_limit && stop.maxSpeed() <= speed_limit * 1.0001) return stop;
+  }
+  return std::nullopt;
+}
+
+// The straight path ahead of a state: its acceleration fades out within kFirstBrakeRampS, then
+// it runs on at the speed reached, far enough for any stop.
+Trajectory fadingStraightPath(const KinematicState& start, double max_acc_mps2) {
+  const double fade = kFirstBrakeRampS;
+  Piece bend;
+  bend.duration = fade;
+  bend.coeffs.col(0) = start.position;
+  bend.coeffs.col(1) = start.velocity;
+  bend.coeffs.col(2) = 0.5 * start.acceleration;
+  bend.coeffs.col(3) = -start.acceleration / (6.0 * fade);
+  const KinematicState end = Trajectory({bend}).state(fade);
+  Piece run;
+  run.duration = 2.0 * longestStop(end.velocity.norm(), max_acc_mps2);
+  run.coeffs.col(0) = end.position;
+  run.coeffs.col(1) = end.velocity;
+  return Trajectory({bend, run});
+}
+
+// The straight stop from nearly at rest, or when braking along the faded path does not fit: three
+// minimum-jerk pieces whose junctions follow a constant deceleration, lengthened until the exact
+// maxima fit the limits.
+Trajectory stopInThreePieces(const KinematicState& start, double max_acc_mps2, double max_vel_mps) {
+  const double speed = start.velocity.norm();
   const Eigen::Vector3d dir =
       speed > 1e-6 ? Eigen::Vector3d(start.velocity / speed) : Eigen::Vector3d::Zero();
   const double speed_limit = std::max(max_vel_mps, speed);
@@ -71,39 +173,33 @@ Trajectory makeStoppingTrajectory(const KinematicState& start, double max_acc_mp
   return best;
 }
 
+}  // namespace
+
+Trajectory makeStoppingTrajectory(const KinematicState& start, double max_acc_mps2,
+                                  double max_vel_mps) {
+  const double speed = start.velocity.norm();
+  if (speed < 1e-3 && start.acceleration.norm() < 1e-3) {
+    Piece hold;
+    hold.duration = 1.0;
+    hold.coeffs.col(0) = start.position;
+    return Trajectory({hold});
+  }
+  if (speed > kNearlyAtRestMps) {
+    if (auto stop =
+            brakeAlong(fadingStraightPath(start, max_acc_mps2), 0.0, max_acc_mps2, max_vel_mps))
+      return *stop;
+  }
+  return stopInThreePieces(start, max_acc_mps2, max_vel_mps);
+}
+
 Trajectory makeStoppingTrajectory(const Trajectory& path, double t0, double max_acc_mps2,
                                   double max_vel_mps) {
   const KinematicState start = path.state(t0);
-  const double speed = start.velocity.norm();
-  const double remaining = path.duration() - t0;
-  if (speed < 1e-3 || remaining <= 1e-3)
-    return makeStoppingTrajectory(start, max_acc_mps2, max_vel_mps);
-  const double speed_limit = std::max(max_vel_mps, speed);
-  const double acc_limit = accelerationLimit(start, max_acc_mps2);
-  // Time warp tau(t) with tau' = 1 - 3 u^2 + 2 u^3 (u = t / T): tau'' = 0 at both ends, so the
-  // acceleration is continuous at the start and zero at rest; the curve is followed up to
-  // tau(T) = T / 2. Peak path deceleration is 1.5 speed / T.
-  for (double total = std::max(0.3, 1.5 * speed / (0.9 * max_acc_mps2));; total *= 1.1) {
-    if (0.5 * total > remaining || total > 1.5 * longestStop(speed, max_acc_mps2)) {
-      // Not enough path left to brake on: the straight stop from the same state.
-      return makeStoppingTrajectory(start, max_acc_mps2, max_vel_mps);
-    }
-    auto warp = [&](double t) {
-      const double u = t / total;
-      return t0 + total * (u - u * u * u + 0.5 * u * u * u * u);
-    };
-    const int pieces = std::max(3, static_cast<int>(std::ceil(total / 0.15)));
-    MincoJerk minco;
-    Eigen::Matrix3d head, tail;
-    head << start.position, start.velocity, start.acceleration;
-    tail << path.position(warp(total)), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero();
-    minco.setConditions(head, tail, pieces);
-    Eigen::Matrix3Xd inner(3, pieces - 1);
-    for (int i = 1; i < pieces; ++i) inner.col(i - 1) = path.position(warp(total * i / pieces));
-    minco.setParameters(inner, Eigen::VectorXd::Constant(pieces, total / pieces));
-    Trajectory stop = minco.trajectory();
-    if (stop.maxAcceleration() <= acc_limit && stop.maxSpeed() <= speed_limit * 1.0001) return stop;
+  if (start.velocity.norm() > kNearlyAtRestMps && path.duration() - t0 > 1e-3) {
+    if (auto stop = brakeAlong(path, t0, max_acc_mps2, max_vel_mps)) return *stop;
   }
+  // Not enough path left to brake on, or no fit: the straight stop from the same state.
+  return makeStoppingTrajectory(start, max_acc_mps2, max_vel_mps);
 }
 
 Trajectory makeSlowdownTrajectory(const Trajectory& path, double t0, double max_speed_mps,
@@ -157,6 +253,10 @@ double sampleStep(const Trajectory& traj) {
 // Less unknown than this counts as none: sampling and the cell edges blur a few centimetres.
 constexpr double kUnknownTolerance_m = 0.1;
 
+// A stop along a bend flown near a_max has little left to brake with and runs on; past this
+// ratio of the straight stop's length the straight one is taken when it is as clear.
+constexpr double kMuchLongerStop = 1.3;
+
 }  // namespace
 
 StopAssessment assessStop(const VoxelGrid& grid, const Trajectory& stop, double limit_m) {
@@ -196,11 +296,17 @@ Trajectory chooseStoppingTrajectory(const VoxelGrid* grid, const Trajectory& pat
   Trajectory along = makeStoppingTrajectory(path, t0, max_acc_mps2, max_vel_mps);
   if (!grid || !grid->valid()) return along;
   const double limit = clearance_m + 0.1;
+  auto clear = [&](const StopAssessment& a) {
+    return a.clearance_m >= clearance_m && a.unknown_m <= kUnknownTolerance_m;
+  };
   const StopAssessment along_seen = assessStop(*grid, along, limit);
-  if (along_seen.clearance_m >= clearance_m && along_seen.unknown_m <= kUnknownTolerance_m)
-    return along;
   Trajectory straight = makeStoppingTrajectory(path.state(t0), max_acc_mps2, max_vel_mps);
-  return saferStop(assessStop(*grid, straight, limit), along_seen, touch_m) ? straight : along;
+  const bool along_much_longer = along.arcLength() > kMuchLongerStop * straight.arcLength();
+  if (clear(along_seen) && !along_much_longer) return along;
+  const StopAssessment straight_seen = assessStop(*grid, straight, limit);
+  if (clear(along_seen) && !clear(straight_seen)) return along;
+  if (clear(along_seen)) return straight;  // both clear, and the straight one much shorter
+  return saferStop(straight_seen, along_seen, touch_m) ? straight : along;
 }
 
 }  // namespace mmh

@@ -9,13 +9,16 @@
 
 namespace mmh {
 
+// The straight stop: the start's acceleration fades out within 0.2 s while braking builds up, then
+// it brakes straight ahead at nearly a_max (as makeStoppingTrajectory along a path, below).
 Trajectory makeStoppingTrajectory(const KinematicState& start, double max_acc_mps2,
                                   double max_vel_mps);
 
-// Brakes along the path of `path` from its time t0: the same curve, re-timed with a smoothly
-// decreasing speed (so an avoidance manoeuvre under way is kept), fitted with minimum-jerk pieces
-// through points of the re-timed curve. Starts exactly in path's state at t0 and ends at rest;
-// |a| <= a_max checked exactly.
+// Brakes along the path of `path` from its time t0: the same curve, re-timed (so an avoidance
+// manoeuvre under way is kept) to brake as hard as a_max leaves after the curve's own
+// acceleration, built up and faded within 0.2 s - nearly the bang-bang stop on a straight path -
+// fitted with minimum-jerk pieces through points of the re-timed curve. Starts exactly in path's
+// state at t0 and ends at rest; |a| <= a_max checked exactly.
 Trajectory makeStoppingTrajectory(const Trajectory& path, double t0, double max_acc_mps2,
                                   double max_vel_mps);
 
@@ -44,10 +47,11 @@ bool saferStop(const StopAssessment& a, const StopAssessment& b, double touch_m)
 
 // The stop to commit when `path` is to be left at t0 (danger ahead on it): braking along it, so
 // that an avoidance under way is kept, if that stays clearance_m from the occupied cells of
-// `grid` through known space; else the safer (saferStop) of it and the straight stop from the
-// same state. Braking along a path that bends into the obstacle it is stopped for can reach it;
-// the straight stop can run into unknown space that the path never crossed. Without a grid,
-// braking along the path.
+// `grid` through known space; but the straight stop from the same state if that is as clear and
+// the one along the path runs much farther (a bend flown near a_max leaves little to brake
+// with); else the safer (saferStop) of the two. Braking along a path that bends into the
+// obstacle it is stopped for can reach it; the straight stop can run into unknown space that the
+// path never crossed. Without a grid, braking along the path.
 Trajectory chooseStoppingTrajectory(const VoxelGrid* grid, const Trajectory& path, double t0,
                                     double max_acc_mps2, double max_vel_mps, double clearance_m,
                                     double touch_m);
