@@ -26,8 +26,28 @@ double longestStop(double speed, double max_acc_mps2) {
   return 4.0 * speed / max_acc_mps2 + 2.0;
 }
 
+// How long each minimum-jerk piece fitted to a re-timed curve lasts.
+constexpr double kFitPieceS = 0.15;
+
+// A re-timed curve as a trajectory: minimum-jerk pieces of about kFitPieceS through
+// path.position(warp(t)) over [0, total], from exactly `start` to the `tail` state (position,
+// velocity, acceleration as columns).
+template <typename Warp>
+Trajectory fitRetimed(const Trajectory& path, const KinematicState& start,
+                      const Eigen::Matrix3d& tail, double total, const Warp& warp) {
+  const int pieces = std::max(3, static_cast<int>(std::ceil(total / kFitPieceS)));
+  MincoJerk minco;
+  Eigen::Matrix3d head;
+  head << start.position, start.velocity, start.acceleration;
+  minco.setConditions(head, tail, pieces);
+  Eigen::Matrix3Xd inner(3, pieces - 1);
+  for (int i = 1; i < pieces; ++i) inner.col(i - 1) = path.position(warp(total * i / pieces));
+  minco.setParameters(inner, Eigen::VectorXd::Constant(pieces, total / pieces));
+  return minco.trajectory();
+}
+
 // How long braking first takes to build up and to fade: short enough to stop nearly as a bang-bang
-// stop would, long enough for the minimum-jerk pieces (0.15 s) to follow.
+// stop would, long enough for the minimum-jerk pieces (kFitPieceS) to follow.
 constexpr double kFirstBrakeRampS = 0.2;
 constexpr double kWarpStepS = 0.002;
 
@@ -101,16 +121,9 @@ std::optional<Trajectory> brakeAlong(const Trajectory& path, double t0, double m
       const size_t i = std::min(static_cast<size_t>(at), taus.size() - 2);
       return taus[i] + (at - i) * (taus[i + 1] - taus[i]);
     };
-    const int pieces = std::max(3, static_cast<int>(std::ceil(total / 0.15)));
-    MincoJerk minco;
-    Eigen::Matrix3d head, tail;
-    head << start.position, start.velocity, start.acceleration;
-    tail << path.position(taus.back()), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero();
-    minco.setConditions(head, tail, pieces);
-    Eigen::Matrix3Xd inner(3, pieces - 1);
-    for (int i = 1; i < pieces; ++i) inner.col(i - 1) = path.position(warp(total * i / pieces));
-    minco.setParameters(inner, Eigen::VectorXd::Constant(pieces, total / pieces));
-    Trajectory stop = minco.trajectory();
+    Eigen::Matrix3d at_rest;
+    at_rest << path.position(taus.back()), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero();
+    const Trajectory stop = fitRetimed(path, start, at_rest, total, warp);
     if (stop.maxAcceleration() <= acc_limit && stop.maxSpeed() <= speed_limit * 1.0001) return stop;
   }
   return std::nullopt;
@@ -225,16 +238,10 @@ Trajectory makeSlowdownTrajectory(const Trajectory& path, double t0, double max_
       const double u = t / transition;
       return t0 + t - (1.0 - ratio) * transition * (u * u * u - 0.5 * u * u * u * u);
     };
-    const int pieces = std::max(3, static_cast<int>(std::ceil(total / 0.15)));
-    MincoJerk minco;
-    Eigen::Matrix3d head, tail;
-    head << start.position, start.velocity, start.acceleration;
-    tail << path.position(end), ratio * path.velocity(end), ratio * ratio * path.acceleration(end);
-    minco.setConditions(head, tail, pieces);
-    Eigen::Matrix3Xd inner(3, pieces - 1);
-    for (int i = 1; i < pieces; ++i) inner.col(i - 1) = path.position(warp(total * i / pieces));
-    minco.setParameters(inner, Eigen::VectorXd::Constant(pieces, total / pieces));
-    Trajectory slow = minco.trajectory();
+    Eigen::Matrix3d slowed_end;
+    slowed_end << path.position(end), ratio * path.velocity(end),
+        ratio * ratio * path.acceleration(end);
+    const Trajectory slow = fitRetimed(path, start, slowed_end, total, warp);
     bool slow_enough = slow.maxSpeed() <= top_speed * 1.0001;
     for (double t = transition; slow_enough && t < slow.duration(); t += 0.02)
       slow_enough = slow.velocity(t).norm() <= max_speed_mps * kSlowdownSpeedTolerance;
@@ -301,12 +308,11 @@ Trajectory chooseStoppingTrajectory(const VoxelGrid* grid, const Trajectory& pat
   };
   const StopAssessment along_seen = assessStop(*grid, along, limit);
   Trajectory straight = makeStoppingTrajectory(path.state(t0), max_acc_mps2, max_vel_mps);
-  const bool along_much_longer = along.arcLength() > kMuchLongerStop * straight.arcLength();
-  if (clear(along_seen) && !along_much_longer) return along;
-  const StopAssessment straight_seen = assessStop(*grid, straight, limit);
-  if (clear(along_seen) && !clear(straight_seen)) return along;
-  if (clear(along_seen)) return straight;  // both clear, and the straight one much shorter
-  return saferStop(straight_seen, along_seen, touch_m) ? straight : along;
+  if (clear(along_seen)) {
+    if (along.arcLength() <= kMuchLongerStop * straight.arcLength()) return along;
+    return clear(assessStop(*grid, straight, limit)) ? straight : along;
+  }
+  return saferStop(assessStop(*grid, straight, limit), along_seen, touch_m) ? straight : along;
 }
 
 }  // namespace mmh

@@ -106,10 +106,6 @@ double distanceToSamples(const std::vector<Eigen::Vector3d>& samples, const Eige
   return best;
 }
 
-}  // namespace
-
-namespace {
-
 // Along x at a constant speed for 30 m; or, when radius_m > 0, round a circle of that radius.
 mmh::Trajectory steadyPath(double speed, double radius_m) {
   const int pieces = 24;
