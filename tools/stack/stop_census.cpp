@@ -25,10 +25,11 @@ std::string rejectionOf(const std::string& detail, const std::string& mode) {
   return detail.substr(from, end == std::string::npos ? std::string::npos : end - from);
 }
 
-// What a verification failure found, without its numbers and timings, so that failures of one
-// kind count together: "verification: max acceleration 2.4 m/s^2 exceeds 2 [A* ...]" gives
-// "max acceleration".
-std::string verificationKind(const std::string& text) {
+// What a verification failure or a rejection found, without its numbers, times and places, so
+// that failures of one kind count together: "verification: max acceleration 2.4 m/s^2 exceeds 2
+// [A* ...]" gives "max acceleration", "collides with the arbiter's map 0.31 s from its start, at
+// (...)" gives "collides with the arbiter's map".
+std::string failureKind(const std::string& text) {
   std::string head = text;
   const std::string prefix = "verification: ";
   if (head.compare(0, prefix.size(), prefix) == 0) head = head.substr(prefix.size());
@@ -109,13 +110,14 @@ std::vector<ModeFailure> StopCensusBuilder::failuresOf(const DecisionSample& dec
     f.mode = modeName(a.mode);
     if (!a.ok) {
       f.reason = planReasonName(a.reason);
-      const std::string kind = verificationKind(a.detail);
+      const std::string kind = failureKind(a.detail);
       if (a.reason == plan_result_t::REASON_VERIFY && !kind.empty()) f.reason += ": " + kind;
       f.text = a.detail;
     } else {
       // A verified answer that was still not committed: the arbiter says why in its text.
       const std::string why = rejectionOf(decision.detail, f.mode);
-      f.reason = why.empty() ? "answer not used" : "rejected: " + why;
+      f.reason = why.empty() ? "answer not used" : "rejected: " + failureKind(why);
+      f.text = why;
     }
     out.push_back(f);
   }

@@ -115,7 +115,16 @@ bool checkAnswer(const Trajectory& t, int64_t answer_start_utime, const Requeste
   if (grid)
     o.escape_min_distance_m = escapeMinDistance(*grid, t.position(0.0), params.check_inflation_m);
   const VerifyResult v = verifyTrajectory(t, o);
-  if (!v.ok) return fail(arbiterWords(v.failed));
+  if (!v.ok) {
+    if (!isCollision(v.failed) && v.failed != VerifyCheck::kGeofence)
+      return fail(arbiterWords(v.failed));
+    // Where: a rejection the user can find in the map.
+    const Eigen::Vector3d p = t.position(v.at_time);
+    char where[96];
+    std::snprintf(where, sizeof(where), " %.2f s from its start, at (%.2f, %.2f, %.2f)", v.at_time,
+                  p.x(), p.y(), p.z());
+    return fail(arbiterWords(v.failed) + std::string(where));
+  }
   // The stop from the start's speed must end in space the sensor has seen.
   if (grid) {
     const double horizon_m = knownSpaceHorizonM(start.velocity.norm(), params);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "mmh/arbiter/answer_check.hpp"
 
@@ -40,6 +41,25 @@ Trajectory straight(double v0, double a, double duration) {
   return Trajectory({p});
 }
 
+// The geofence around the grid, and a request to start at (0, 0, 1.2) with the given velocity
+// and acceleration.
+ArbiterParams paramsAroundTheGrid() {
+  ArbiterParams p;
+  p.geofence_min_m = Eigen::Vector3d(-5.0, -5.0, 0.3);
+  p.geofence_max_m = Eigen::Vector3d(10.0, 5.0, 2.7);
+  return p;
+}
+
+RequestedStart requestAtTheOrigin(const Eigen::Vector3d& velocity,
+                                  const Eigen::Vector3d& acceleration) {
+  RequestedStart requested;
+  requested.start_utime = 1'000'000;
+  requested.state.position = Eigen::Vector3d(0.0, 0.0, 1.2);
+  requested.state.velocity = velocity;
+  requested.state.acceleration = acceleration;
+  return requested;
+}
+
 }  // namespace
 
 TEST(AnswerCheck, TheKnownSpaceHorizonIsTheStoppingDistancePlusTheMargin) {
@@ -71,13 +91,9 @@ TEST(AnswerCheck, UnmappedSpaceWithinTheStopIsFoundAndBeyondItIsNot) {
 }
 
 TEST(AnswerCheck, AnAnswerWhoseStopWouldEndInUnmappedSpaceIsRefused) {
-  ArbiterParams p;
-  p.geofence_min_m = Eigen::Vector3d(-5.0, -5.0, 0.3);
-  p.geofence_max_m = Eigen::Vector3d(10.0, 5.0, 2.7);
-  RequestedStart requested;
-  requested.start_utime = 1'000'000;
-  requested.state.position = Eigen::Vector3d(0.0, 0.0, 1.2);
-  requested.state.acceleration = Eigen::Vector3d(1.0, 0.0, 0.0);
+  ArbiterParams p = paramsAroundTheGrid();
+  const RequestedStart requested =
+      requestAtTheOrigin(Eigen::Vector3d::Zero(), Eigen::Vector3d(1.0, 0.0, 0.0));
   const Trajectory answer = straight(0.0, 1.0, 2.0);
   VoxelGrid g = mappedFreeGrid();
   std::string why;
@@ -87,6 +103,33 @@ TEST(AnswerCheck, AnAnswerWhoseStopWouldEndInUnmappedSpaceIsRefused) {
   EXPECT_NE(why.find("enters unmapped space"), std::string::npos) << why;
   p.known_space_margin_m = 0.1;  // a stop from rest that ends before the slab
   EXPECT_TRUE(checkAnswer(answer, requested.start_utime, requested, &g, p, &why)) << why;
+}
+
+TEST(AnswerCheck, ARefusedAnswerSaysWhereItMeetsTheMap) {
+  const ArbiterParams p = paramsAroundTheGrid();
+  const RequestedStart requested =
+      requestAtTheOrigin(Eigen::Vector3d(2.0, 0.0, 0.0), Eigen::Vector3d::Zero());
+  const Trajectory answer = straight(2.0, 0.0, 2.0);  // 4 m along +x
+  VoxelGrid g = mappedFreeGrid();
+  std::string why;
+  ASSERT_TRUE(checkAnswer(answer, requested.start_utime, requested, &g, p, &why)) << why;
+  // One occupied cell beside the way at x = 3 m: the 0.25 m margin reaches the way.
+  g.setInflationRadius(0.25);
+  g.set(g.localIndexOf(Eigen::Vector3d(3.05, 0.15, 1.25)), Occupancy::kOccupied);
+  EXPECT_FALSE(checkAnswer(answer, requested.start_utime, requested, &g, p, &why));
+  // Where the way enters the margin: about 1.4 s (x = 2.8 m), named with the place.
+  EXPECT_EQ(why.rfind("collides with the arbiter's map ", 0), 0u) << why;
+  double at_s = 0.0, x = 0.0, y = 0.0, z = 0.0;
+  ASSERT_EQ(std::sscanf(why.c_str(),
+                        "collides with the arbiter's map %lf s from its start, at "
+                        "(%lf, %lf, %lf)",
+                        &at_s, &x, &y, &z),
+            4)
+      << why;
+  EXPECT_NEAR(at_s, 1.4, 0.06);
+  EXPECT_NEAR(x, 2.0 * at_s, 0.011);
+  EXPECT_NEAR(y, 0.0, 1e-9);
+  EXPECT_NEAR(z, 1.2, 1e-9);
 }
 
 TEST(AnswerCheck, TheCommittedTrajectorysReachIsTheLeadThenTheStopFromTheSpeedThere) {

@@ -57,7 +57,8 @@ TEST(StopCensus, StopAfterAFailedRoundNamesItsModesAndCause) {
   b.onPlanResult(kSom, false, plan_result_t::REASON_NO_PATH, "A* found no path");
   b.onPlanResult(kEam, true, plan_result_t::REASON_NONE, "");
   const std::string notes =
-      "SOM failed (A* found no path); EAM rejected: collides with the arbiter's map; ";
+      "SOM failed (A* found no path); EAM rejected: collides with the arbiter's map 0.31 s from "
+      "its start, at (1.20, -0.40, 1.10); ";
   b.onDecision(
       decision(3.2, arbiter_status_t::OUTCOME_FAILED, 5, (1 << kSom) | (1 << kEam), notes));
   b.onDecision(decision(3.2, arbiter_status_t::OUTCOME_STOPPING, 5, 0,
@@ -75,6 +76,8 @@ TEST(StopCensus, StopAfterAFailedRoundNamesItsModesAndCause) {
   EXPECT_EQ(s.failed_modes[0].text, "A* found no path");
   EXPECT_EQ(s.failed_modes[1].mode, "EAM");
   EXPECT_EQ(s.failed_modes[1].reason, "rejected: collides with the arbiter's map");
+  EXPECT_EQ(s.failed_modes[1].text,
+            "collides with the arbiter's map 0.31 s from its start, at (1.20, -0.40, 1.10)");
   EXPECT_EQ(c.max_calls_without_commit, 4);
   EXPECT_EQ(c.causeCounts().at("no usable answer + danger ahead"), 1);
 }
