@@ -207,7 +207,8 @@ bool CorridorBuilder::build(const VoxelGrid& grid, const std::vector<Eigen::Vect
       *why = "seed outside the corridor bounds";
       return false;
     }
-    mask_.build(grid, box_lo, box_hi, escape, params.check_inflation_m);
+    mask_.build(grid, box_lo, box_hi, escape, params.check_inflation_m,
+                params.check_face_clearance_m);
     mask_.surfacePoints(&points_);
     out->surface_points += static_cast<int>(points_.size());
     Polytope poly;

@@ -41,7 +41,8 @@ bool EscapeZone::frees(const VoxelGrid& grid, const Eigen::Vector3i& local,
 }
 
 bool BlockedMask::build(const VoxelGrid& grid, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
-                        const EscapeZone& escape, double check_inflation_m) {
+                        const EscapeZone& escape, double check_inflation_m,
+                        double check_face_clearance_m) {
   escape_faces_.clear();
   check_faces_.clear();
   Eigen::Vector3i f, l;
@@ -111,15 +112,17 @@ bool BlockedMask::build(const VoxelGrid& grid, const Eigen::Vector3d& lo, const 
     for (uint8_t& m : mask_)
       if (m == 2) m = 0;
   }
-  if (check_inflation_m > 0.0) addCheckFaces(grid, f, check_inflation_m);
+  if (check_inflation_m > 0.0) addCheckFaces(grid, f, check_inflation_m, check_face_clearance_m);
   return true;
 }
 
 void BlockedMask::addCheckFaces(const VoxelGrid& grid, const Eigen::Vector3i& first,
-                                double check_inflation_m) {
+                                double check_inflation_m, double clearance_m) {
   // A polytope face through a surface cell's centre leaves the cell's outer half inside the
-  // polytope; where the arbiter's smaller margin still blocks that cell, the faces towards the
-  // unblocked neighbours keep the polytopes out of it.
+  // polytope; where the arbiter's smaller margin still blocks that cell, points just off its
+  // faces towards the unblocked neighbours keep the polytopes out of it. Just off: a verified
+  // trajectory may leave its polytopes by the verification's tolerance, and a point on the face
+  // itself let answers graze the cell, which the arbiter then refused round after round.
   const std::vector<Eigen::Vector3i> offsets =
       VoxelGrid::offsetsWithin(check_inflation_m, grid.resolution());
   const int64_t step[3] = {1, sy_, sz_};
@@ -139,7 +142,7 @@ void BlockedMask::addCheckFaces(const VoxelGrid& grid, const Eigen::Vector3i& fi
           for (int sign : {-1, 1}) {
             if (mask_[i + sign * step[axis]] != 0) continue;
             Eigen::Vector3d q = c;
-            q[axis] += sign * (0.5 * res_ - kFaceInset);
+            q[axis] += sign * (0.5 * res_ + clearance_m - kFaceInset);
             check_faces_.push_back(q);
           }
       }

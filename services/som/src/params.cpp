@@ -6,6 +6,11 @@
 
 namespace mmh::som {
 
+namespace {
+// Check faces lie this much beyond the corridor tolerance (CorridorParams).
+constexpr double kCheckFaceBeyondToleranceM = 0.001;
+}  // namespace
+
 SomParams loadSomParams(const Config& c) {
   SomParams p;
   const VehicleLimits vehicle = loadVehicleLimits(c);
@@ -56,6 +61,7 @@ SomParams loadSomParams(const Config& c) {
   VerifyParams& v = p.verify;
   v.limit_tolerance = c.getDouble("som.verify_limit_tolerance");
   v.corridor_tolerance_m = c.getDouble("som.verify_corridor_tolerance_m");
+  k.check_face_clearance_m = v.corridor_tolerance_m + kCheckFaceBeyondToleranceM;
   checkConfigConstraints(c);
   return p;
 }

@@ -250,20 +250,22 @@ TEST(ObstaclePoints, EscapeZoneFreesOnlyTheMarginAroundTheStart) {
   }
 }
 
-TEST(ObstaclePoints, CellsTheArbitersMarginBlocksGiveTheirOuterFaces) {
+TEST(ObstaclePoints, CellsTheArbitersMarginBlocksAreFencedJustBeyondTheCorridorTolerance) {
   const som_test::World w = som_test::pillars();
   const mmh::VoxelGrid& g = *w.grid;  // inflated 0.3 m
   mmh::VoxelGrid check = g;
   check.setInflationRadius(0.25);
   const Vector3d lo(2.0, -1.5, 0.3), hi(6.0, 1.5, 2.0);
+  const double clearance = 0.021;  // SOM's: the verification's corridor tolerance + 1 mm
   std::vector<Vector3d> plain, with_faces;
   mmh::som::BlockedMask mask;
   ASSERT_TRUE(mask.build(g, lo, hi, {}));
   mask.surfacePoints(&plain);
-  ASSERT_TRUE(mask.build(g, lo, hi, {}, 0.25));
+  ASSERT_TRUE(mask.build(g, lo, hi, {}, 0.25, clearance));
   mask.surfacePoints(&with_faces);
   // Brute force: one point per face between a surface cell that the 0.25 m margin blocks and an
-  // unblocked 6-neighbour, a hair inside the blocked cell, on that face.
+  // unblocked 6-neighbour, `clearance` off that face inside the neighbour, so that a trajectory
+  // that leaves its polytope by less than that does not touch the blocked cell.
   size_t expected = 0;
   for (int64_t i = 0; i < g.numCells(); ++i) {
     const Eigen::Vector3i c = g.localFromLinear(i);
@@ -277,10 +279,15 @@ TEST(ObstaclePoints, CellsTheArbitersMarginBlocksGiveTheirOuterFaces) {
   ASSERT_EQ(with_faces.size(), plain.size() + expected);
   for (size_t k = plain.size(); k < with_faces.size(); ++k) {
     const Vector3d& q = with_faces[k];
-    EXPECT_TRUE(check.isBlockedPoint(q));
-    // On a cell face: one coordinate a hair from a multiple of the cell size.
+    EXPECT_FALSE(g.isBlockedPoint(q));
+    // `clearance` from a cell face, and that face is a blocked cell's.
     const Vector3d r = q / g.resolution();
-    const double to_face = (r - r.array().round().matrix()).cwiseAbs().minCoeff();
-    EXPECT_LT(to_face, 1e-4);
+    const Vector3d off = r - r.array().round().matrix();
+    int axis = 0;
+    off.cwiseAbs().minCoeff(&axis);
+    EXPECT_NEAR(std::abs(off[axis]) * g.resolution(), clearance, 1e-5);
+    Vector3d across = q;
+    across[axis] -= (off[axis] > 0 ? 1 : -1) * (clearance + 1e-4);
+    EXPECT_TRUE(check.isBlockedPoint(across));
   }
 }

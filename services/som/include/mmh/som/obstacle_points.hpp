@@ -32,9 +32,11 @@ class BlockedMask {
  public:
   // False if no cell centre lies in [lo, hi]. Surface cells whose centres lie within
   // check_inflation_m of an occupied cell (a smaller margin that another check blocks whole
-  // cells by; 0: none) also give the centres of their faces towards unblocked 6-neighbours.
+  // cells by; 0: none) also give points on their faces towards unblocked 6-neighbours, moved
+  // check_face_clearance_m off the cell into the neighbour.
   bool build(const VoxelGrid& grid, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
-             const EscapeZone& escape, double check_inflation_m = 0.0);
+             const EscapeZone& escape, double check_inflation_m = 0.0,
+             double check_face_clearance_m = 0.0);
   // Centres of the blocked cells with at least one 6-neighbour that is not blocked, and the
   // face points of build.
   void surfacePoints(std::vector<Eigen::Vector3d>* out) const;
@@ -42,7 +44,8 @@ class BlockedMask {
   void pointsInside(const Polytope& poly, std::vector<Eigen::Vector3d>* out) const;
 
  private:
-  void addCheckFaces(const VoxelGrid& grid, const Eigen::Vector3i& first, double check_inflation_m);
+  void addCheckFaces(const VoxelGrid& grid, const Eigen::Vector3i& first, double check_inflation_m,
+                     double clearance_m);
   Eigen::Vector3d centerOf(int x, int y, int z) const {
     return corner_ + Eigen::Vector3d(x, y, z) * res_;
   }
@@ -50,8 +53,8 @@ class BlockedMask {
   // Centres of the faces between a cell the escape frees (not the start's own) and a blocked
   // 6-neighbour: obstacle points too (see build).
   std::vector<Eigen::Vector3d> escape_faces_;
-  // Centres of the faces between a surface cell within the check inflation and an unblocked
-  // 6-neighbour (see build).
+  // Points on the faces between a surface cell within the check inflation and an unblocked
+  // 6-neighbour, moved off the cell (see build).
   std::vector<Eigen::Vector3d> check_faces_;
   Eigen::Vector3i n_ = Eigen::Vector3i::Zero();       // cells of the box per axis
   Eigen::Vector3d corner_ = Eigen::Vector3d::Zero();  // centre of box cell (0, 0, 0)

@@ -28,8 +28,11 @@ struct CorridorParams {
   double junction_margin_m = 0.1;
   int max_polytopes = 48;
   // Cells whose centres lie within this of an occupied cell are kept out of the polytopes
-  // entirely, not only up to their centres (0: off; see Planner::plan).
+  // entirely, not only up to their centres (0: off; see Planner::plan) ...
   double check_inflation_m = 0.0;
+  // ... by faces this far outside them: just beyond the verification's corridor tolerance, so
+  // that a trajectory verified to stay within it of its polytopes cannot touch such a cell.
+  double check_face_clearance_m = 0.021;
 };
 
 struct OptimizerParams {
