@@ -130,6 +130,17 @@ TEST(AnswerCheck, ARefusedAnswerSaysWhereItMeetsTheMap) {
   EXPECT_NEAR(x, 2.0 * at_s, 0.011);
   EXPECT_NEAR(y, 0.0, 1e-9);
   EXPECT_NEAR(z, 1.2, 1e-9);
+  // A geofence 2 m ahead (0.05 m tolerance): named the same way.
+  ArbiterParams fenced = p;
+  fenced.geofence_max_m.x() = 2.0;
+  EXPECT_FALSE(checkAnswer(answer, requested.start_utime, requested, nullptr, fenced, &why));
+  ASSERT_EQ(std::sscanf(why.c_str(), "leaves the geofence %lf s from its start, at (%lf, %lf, %lf)",
+                        &at_s, &x, &y, &z),
+            4)
+      << why;
+  EXPECT_GT(x, 2.05);  // the first time-step sample past the fence and its tolerance
+  EXPECT_LE(x, 2.05 + 2.0 * p.check_step_s + 1e-9);
+  EXPECT_NEAR(at_s, x / 2.0, 1e-6);
 }
 
 TEST(AnswerCheck, TheCommittedTrajectorysReachIsTheLeadThenTheStopFromTheSpeedThere) {
