@@ -318,6 +318,11 @@ std::vector<KeySpec> buildKeys() {
       real("arbiter.slow_plan_ratio", 1.0, 100.0, "2.0",
            "A trajectory to the goal slower than this x the bound of its straight length is "
            "replanned at its halfway point too"),
+      real("arbiter.halfway_keep_margin_s", 0.0, 3600.0, "0.5",
+           "A halfway replan keeps the committed trajectory when the answer's estimated arrival "
+           "at the goal is later than the committed one's by more than this"),
+      real("arbiter.halfway_keep_min_left_s", 0.0, 3600.0, "2.0",
+           "... but only while more than this of the committed trajectory is left"),
       real("arbiter.known_space_margin_m", 0.0, 10.0, "0.3",
            "An answer must stay in mapped space within its stopping distance from the start plus "
            "this"),

@@ -44,6 +44,8 @@ const char* outcomeName(int outcome) {
       return "unreachable";
     case arbiter_status_t::OUTCOME_GOAL_MOVED:
       return "goal-moved";
+    case arbiter_status_t::OUTCOME_KEPT:
+      return "kept";
   }
   return "?";
 }

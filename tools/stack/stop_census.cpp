@@ -131,7 +131,9 @@ std::vector<ModeFailure> StopCensusBuilder::failuresOf(const DecisionSample& dec
 void StopCensusBuilder::onDecision(const DecisionSample& d) {
   const bool follows_failure =
       last_decision_failed_ && d.time_s - last_decision_time_s_ < kSameDecisionStepS;
-  if (d.outcome == arbiter_status_t::OUTCOME_COMMITTED) {
+  // A round that kept the committed trajectory chose a way on, as a commit does.
+  if (d.outcome == arbiter_status_t::OUTCOME_COMMITTED ||
+      d.outcome == arbiter_status_t::OUTCOME_KEPT) {
     calls_without_commit_ = 0;
     failed_since_commit_ = 0;
   } else {

@@ -44,7 +44,8 @@ struct StopRecord {
 
 struct FlightCensus {
   std::vector<StopRecord> stops;
-  // The longest run of planning calls (every mode) whose rounds all ended without a commit.
+  // The longest run of planning calls (every mode) whose rounds all ended without a commit (or
+  // a kept committed trajectory).
   int max_calls_without_commit = 0;
   // The longest stretch in which the distance to the goal did not shrink by kProgressStepM,
   // from the start of the flight to its end (arrival, collision or timeout), and its start.

@@ -173,6 +173,7 @@ void ArbiterNode::flush() {
   ctx_.setCounter("unreachable_goals", n.unreachable_goals);
   ctx_.setCounter("back_offs", n.back_offs);
   ctx_.setCounter("moved_goals", n.moved_goals);
+  ctx_.setCounter("kept_trajectories", n.kept_trajectories);
   ctx_.setCounter("degraded_periods", n.degraded_periods);
   ctx_.setCounter("slowdowns", n.slowdowns);
   // Latencies as gauges (ms), so that mmh-top and a log show what the budget sees.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <utility>
 
 #include "mmh/arbiter/goal_placement.hpp"
@@ -241,8 +242,8 @@ bool Arbiter::collisionThreat(int64_t now, double* eta_s) const {
   const auto hit = firstCollisionTime(*grid_, t, elapsed, t.duration());
   if (!hit) return false;
   *eta_s = *hit - elapsed;
-  const double replan_point_s =
-      replanPointS(t.duration(), committed_.bound_s, repairedReplanPointS(), params_);
+  const double replan_point_s = replanPointS(t.duration(), committed_.bound_s,
+                                             repairedReplanPointS(), params_, keptReplanPointS());
   return collisionNeedsRoundNow(*hit, elapsed, replan_point_s, committed_.ends_at_goal, params_);
 }
 
@@ -255,6 +256,7 @@ ReplanView Arbiter::replanView(int64_t now) const {
   v.committed_duration_s = committed_.trajectory.duration();
   v.committed_bound_s = committed_.bound_s;
   v.repaired_replan_point_s = repairedReplanPointS();
+  v.kept_replan_point_s = keptReplanPointS();
   v.collision_eta_s = collision_eta_s_;
   v.awareness_safe = awareness_ ? awareness_->safe : true;
   v.flown_since_last_round_m = (vehiclePosition() - last_round_position_).norm();
@@ -466,9 +468,14 @@ std::optional<double> Arbiter::repairedReplanPointS() const {
   return (*committed_.repaired_replan_utime - committed_.start_utime) * kUs;
 }
 
+std::optional<double> Arbiter::keptReplanPointS() const {
+  if (!committed_.kept_replan_utime) return std::nullopt;
+  return (*committed_.kept_replan_utime - committed_.start_utime) * kUs;
+}
+
 int64_t Arbiter::committedReplanUtime() const {
   const double point_s = replanPointS(committed_.trajectory.duration(), committed_.bound_s,
-                                      repairedReplanPointS(), params_);
+                                      repairedReplanPointS(), params_, keptReplanPointS());
   return committed_.start_utime + static_cast<int64_t>(point_s * 1e6);
 }
 
@@ -479,7 +486,8 @@ void Arbiter::commit(const Trajectory& trajectory, int64_t start_utime, Mode mod
   const double straight_m =
       (trajectory.position(trajectory.duration()) - trajectory.position(0.0)).norm();
   const double bound_s = restToRestTime(straight_m, params_.max_vel_mps, params_.max_acc_mps2);
-  committed_ = Committed{trajectory, start_utime, mode, ends_at_goal, repaired, bound_s};
+  committed_ =
+      Committed{trajectory, start_utime, mode, ends_at_goal, repaired, std::nullopt, bound_s};
   CommitOut c;
   c.trajectory_id = next_trajectory_id_++;
   c.start_utime = start_utime;
@@ -554,6 +562,30 @@ void Arbiter::decide(int64_t now, bool by_deadline) {
     ++counters_.not_committed_stale_odom;
     notes += "ODOMETRY is stale: answer not committed; ";
     best = nullptr;
+  }
+  if (best && hasCommitted()) {
+    const double start_s = (round.start.start_utime - committed_.start_utime) * kUs;
+    const Trajectory rest = committed_.trajectory.tail(start_s);
+    const double committed_score = answerScore(rest, goal_.position, params_);
+    if (keepsCommitted(round.trigger, best_score, committed_score, rest.duration(), params_)) {
+      committed_.kept_replan_utime =
+          committed_.start_utime +
+          static_cast<int64_t>(
+              replanPointAfterKeepS(start_s, committed_.trajectory.duration(), params_) * 1e6);
+      ++counters_.kept_trajectories;
+      d.outcome = Outcome::kKept;
+      d.committed_mode = committed_.mode;
+      d.trajectory_id = next_trajectory_id_ - 1;
+      char text[160];
+      std::snprintf(text, sizeof text,
+                    "%s's answer would reach the goal in %.1f s, the committed %s trajectory in "
+                    "%.1f s: kept, replanning in %.1f s",
+                    toString(best->mode), best_score, toString(committed_.mode), committed_score,
+                    (*committed_.kept_replan_utime - round.start.start_utime) * kUs);
+      d.detail = notes + text;
+      pushDecision(d);
+      return;
+    }
   }
   if (best) {
     if (phase_ == Phase::kUnreachable) progress_.restart(now);  // a new chance to progress

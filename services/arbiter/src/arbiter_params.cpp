@@ -86,6 +86,8 @@ ArbiterParams loadArbiterParams(const Config& config) {
   p.replan_fraction = config.getDouble("arbiter.replan_fraction");
   p.slow_plan_ratio = config.getDouble("arbiter.slow_plan_ratio");
   p.slow_plan_replan_s = config.getDouble("arbiter.slow_plan_replan_s");
+  p.halfway_keep_margin_s = config.getDouble("arbiter.halfway_keep_margin_s");
+  p.halfway_keep_min_left_s = config.getDouble("arbiter.halfway_keep_min_left_s");
   p.known_space_margin_m = config.getDouble("arbiter.known_space_margin_m");
   p.reference_min_remaining_s = config.getDouble("arbiter.reference_min_remaining_s");
   p.stop_min_speed_mps = config.getDouble("arbiter.stop_min_speed_mps");

@@ -54,6 +54,8 @@ const char* toString(Outcome outcome) {
       return "unreachable";
     case Outcome::kGoalMoved:
       return "goal-moved";
+    case Outcome::kKept:
+      return "kept";
   }
   return "?";
 }

@@ -22,7 +22,9 @@ bool isSlowPlan(double duration_s, double bound_s, const ArbiterParams& params) 
 }
 
 double replanPointS(double duration_s, double bound_s,
-                    std::optional<double> repaired_replan_point_s, const ArbiterParams& params) {
+                    std::optional<double> repaired_replan_point_s, const ArbiterParams& params,
+                    std::optional<double> kept_replan_point_s) {
+  if (kept_replan_point_s) return *kept_replan_point_s;
   double own_s = params.replan_fraction * duration_s;
   if (isSlowPlan(duration_s, bound_s, params)) own_s = std::min(own_s, params.slow_plan_replan_s);
   return repaired_replan_point_s ? std::min(own_s, *repaired_replan_point_s) : own_s;
@@ -48,7 +50,8 @@ Trigger nextTrigger(const ReplanView& v, const ArbiterParams& params) {
     const bool slow = isSlowPlan(v.committed_duration_s, v.committed_bound_s, params);
     if ((!v.committed_ends_at_goal || slow) &&
         v.committed_elapsed_s > replanPointS(v.committed_duration_s, v.committed_bound_s,
-                                             v.repaired_replan_point_s, params)) {
+                                             v.repaired_replan_point_s, params,
+                                             v.kept_replan_point_s)) {
       return Trigger::kHalfway;
     }
     return Trigger::kNone;
@@ -125,6 +128,16 @@ double answerScore(const Trajectory& answer, const Eigen::Vector3d& goal,
                    const ArbiterParams& params) {
   return answer.duration() +
          (goal - answer.position(answer.duration())).norm() / params.max_vel_mps;
+}
+
+bool keepsCommitted(Trigger trigger, double answer_score_s, double committed_score_s,
+                    double committed_left_s, const ArbiterParams& params) {
+  return trigger == Trigger::kHalfway && committed_left_s > params.halfway_keep_min_left_s &&
+         answer_score_s > committed_score_s + params.halfway_keep_margin_s;
+}
+
+double replanPointAfterKeepS(double start_s, double duration_s, const ArbiterParams& params) {
+  return start_s + params.replan_fraction * std::max(0.0, duration_s - start_s);
 }
 
 bool shouldStop(StopCause cause, const StopView& v, const ArbiterParams& params) {

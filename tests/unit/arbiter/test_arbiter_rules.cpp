@@ -188,6 +188,48 @@ TEST_F(ArbiterRules, ReplansOnlyPastTheHalfwayPointFromTheCommittedState) {
   EXPECT_NEAR(later[0].target.y(), 0.0, 1e-6);
 }
 
+TEST_F(ArbiterRules, AHalfwayAnswerThatWouldArriveLaterIsNotTakenAndTheRestIsReplannedLater) {
+  auto a = started(Policy::kMmh);
+  auto r = a->takeRequests().at(0);
+  a->onAnswer(okAnswer(r), at(0.001));
+  auto plan = a->takeCommit();
+  ASSERT_TRUE(plan.has_value());
+  const double duration = plan->trajectory.duration();
+  auto halfway = fly(*a, 0.01, 0.5 * duration + 0.1);
+  ASSERT_EQ(halfway.size(), 1u);
+  ASSERT_EQ(halfway[0].trigger, Trigger::kHalfway);
+  a->takeDecisions();
+  // A loop: out to the side and back, then to the target - seconds later than the committed rest.
+  ModeAnswer loop = okAnswer(halfway[0]);
+  KinematicState aside = rest(halfway[0].start.position + Vector3d(0.0, 6.0, 0.0));
+  Trajectory out = mmh::test::planFrom(halfway[0].start, aside.position, 6.0);
+  Trajectory back = simplePlan(aside, halfway[0].target);
+  for (const auto& piece : back.pieces()) out.append(piece);
+  loop.trajectory = out;
+  const int64_t asked = at(0.5 * duration + 0.1);
+  a->onAnswer(loop, asked);
+  EXPECT_FALSE(a->takeCommit().has_value());  // the committed trajectory flies on
+  auto decisions = a->takeDecisions();
+  ASSERT_EQ(decisions.size(), 1u);
+  EXPECT_EQ(decisions[0].outcome, Outcome::kKept);
+  EXPECT_EQ(decisions[0].committed_mode, plan->mode);
+  EXPECT_NE(decisions[0].detail.find("kept, replanning in"), std::string::npos)
+      << decisions[0].detail;
+  EXPECT_EQ(a->counters().kept_trajectories, 1);
+  EXPECT_EQ(a->committedStartUtime(), plan->start_utime);
+  // No new round at once; the next halfway replan comes halfway through the rest.
+  const double start_s = (halfway[0].start_utime - plan->start_utime) * 1e-6;
+  const double next_s = start_s + 0.5 * (duration - start_s);
+  const double from_s = (asked - kT0) * 1e-6 + 0.01;
+  EXPECT_TRUE(fly(*a, from_s, next_s - 0.05).empty());
+  auto next = fly(*a, next_s - 0.04, next_s + 0.1);
+  ASSERT_EQ(next.size(), 1u);
+  EXPECT_EQ(next[0].trigger, Trigger::kHalfway);
+  // An answer no later than the committed rest is taken.
+  a->onAnswer(okAnswer(next[0]), at(next_s + 0.11));
+  EXPECT_TRUE(a->takeCommit().has_value());
+}
+
 TEST_F(ArbiterRules, NoHalfwayReplanWhenTheTrajectoryEndsAtTheGoal) {
   goal_ = Vector3d(8.0, 0.0, 1.2);
   auto a = started(Policy::kMmh);

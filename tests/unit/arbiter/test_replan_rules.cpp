@@ -110,6 +110,35 @@ TEST(ReplanRules, ARepairKeepsTheReplanPointOfThePlanItRepairs) {
   EXPECT_EQ(replanPointS(10.0, 0.0, std::nullopt, p), 5.0);
 }
 
+TEST(ReplanRules, AHalfwayAnswerThatArrivesLaterKeepsTheCommittedTrajectory) {
+  const ArbiterParams p = paramsFor(Policy::kMmh);  // margin 0.5 s, at least 2 s left
+  // Later by more than the margin, with more than 2 s of the committed rest left: kept.
+  EXPECT_TRUE(keepsCommitted(Trigger::kHalfway, 17.9, 9.4, 3.3, p));
+  // Later by less than the margin, or sooner: taken.
+  EXPECT_FALSE(keepsCommitted(Trigger::kHalfway, 9.8, 9.4, 3.3, p));
+  EXPECT_FALSE(keepsCommitted(Trigger::kHalfway, 8.0, 9.4, 3.3, p));
+  // Too little of the committed rest left (the vehicle would brake to its end): taken.
+  EXPECT_FALSE(keepsCommitted(Trigger::kHalfway, 17.9, 9.4, 1.9, p));
+  // Only the halfway replan, never a round that answers a danger or a new goal.
+  for (Trigger t : {Trigger::kCollision, Trigger::kRetry, Trigger::kInitial, Trigger::kGoalChanged,
+                    Trigger::kFixed})
+    EXPECT_FALSE(keepsCommitted(t, 17.9, 9.4, 3.3, p));
+}
+
+TEST(ReplanRules, AKeptTrajectoryIsReplannedHalfwayThroughItsRest) {
+  const ArbiterParams p = paramsFor(Policy::kMmh);
+  // Kept at 5 s into a 10 s trajectory: the next halfway replan at 7.5 s, not at once.
+  const double point = replanPointAfterKeepS(5.0, 10.0, p);
+  EXPECT_DOUBLE_EQ(point, 7.5);
+  ReplanView v = tracking(5.1);
+  v.kept_replan_point_s = point;
+  EXPECT_EQ(nextTrigger(v, p), Trigger::kNone);
+  v.committed_elapsed_s = 7.6;
+  EXPECT_EQ(nextTrigger(v, p), Trigger::kHalfway);
+  // The kept point overrides a repaired plan's earlier one.
+  EXPECT_EQ(replanPointS(10.0, 0.0, 1.5, p, 7.5), 7.5);
+}
+
 TEST(ReplanRules, BaselinesReplanAfterAFixedDistance) {
   const ArbiterParams p = paramsFor(Policy::kEgo);
   ReplanView v = tracking(1.0);

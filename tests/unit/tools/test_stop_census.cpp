@@ -144,6 +144,11 @@ TEST(StopCensus, CallsWithoutCommitRestartAtEachCommitAndCountAnOpenRound) {
   // Answers of modes that are not planners (the stop) are not planning calls.
   b.onPlanResult(plan_request_t::MODE_STOP, true, 0, "");
   EXPECT_EQ(b.finish(3.0).max_calls_without_commit, 4);
+  // A round that keeps the committed trajectory (a later halfway answer) ends the run: the
+  // open round's calls close with it, and the three after it make no run longer than 3.
+  b.onDecision(decision(2.4, arbiter_status_t::OUTCOME_KEPT, 2, 1 << kEam, "kept"));
+  failedRound(2.6, 3);
+  EXPECT_EQ(b.finish(3.0).max_calls_without_commit, 3);
 }
 
 TEST(StopCensus, LongestNoProgressNeedsMoreThanATenthOfAMetre) {

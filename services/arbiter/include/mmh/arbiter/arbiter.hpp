@@ -95,6 +95,8 @@ struct ArbiterCounters {
   int slowdowns = 0;         // committed trajectories slowed to the latency budget's speed limit
   int degraded_periods = 0;  // times the latency budget became degraded
   int moved_goals = 0;       // goals moved out of an obstacle's margin
+  int kept_trajectories =
+      0;  // halfway answers not taken: the committed one reaches the goal sooner
 };
 
 class Arbiter {
@@ -157,6 +159,8 @@ class Arbiter {
     bool ends_at_goal = false;
     // A repair of the plan before it (replan_rules.hpp, replanPointS): that plan's replan point.
     std::optional<int64_t> repaired_replan_utime;
+    // Kept over a later halfway answer (replan_rules.hpp, keepsCommitted): its next replan point.
+    std::optional<int64_t> kept_replan_utime;
     double bound_s = 0.0;  // restToRestTime of its straight length
   };
   // A planning round in flight: requests sent, answers collected until all came or the deadline.
@@ -198,6 +202,7 @@ class Arbiter {
   // When rule (1) replans the committed trajectory (replanPointS), on the message clock.
   int64_t committedReplanUtime() const;
   std::optional<double> repairedReplanPointS() const;
+  std::optional<double> keptReplanPointS() const;
   // Commits a stopping trajectory; every caller has asked shouldStop() first.
   void commitStop(int64_t now, const std::string& why, Trigger trigger);
   void onStaleOdometry(int64_t now);

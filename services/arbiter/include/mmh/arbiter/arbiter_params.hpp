@@ -62,6 +62,11 @@ struct ArbiterParams {
   double slow_plan_ratio = 2.0;
   // ... and any such crawl is replanned no later than this after it was committed.
   double slow_plan_replan_s = 1.0;
+  // A halfway replan whose answer would reach the goal more than halfway_keep_margin_s later
+  // than the committed trajectory (answerScore of both) keeps the committed one while more than
+  // halfway_keep_min_left_s of it is left, and replans again halfway through the rest.
+  double halfway_keep_margin_s = 0.5;
+  double halfway_keep_min_left_s = 2.0;
   // An answer must stay in mapped space within its stopping distance from the start plus this.
   double known_space_margin_m = 0.3;
   ParallelModes parallel_modes = ParallelModes::kNone;

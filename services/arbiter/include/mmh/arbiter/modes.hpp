@@ -27,6 +27,7 @@ enum class Outcome : int8_t {
   kRejected = 5,
   kUnreachable = 6,
   kGoalMoved = 7,  // the goal lay in an obstacle's margin: moved to the nearest free point
+  kKept = 8,       // a halfway answer would reach the goal later: the committed one stays
 };
 
 const char* toString(Mode mode);

@@ -45,6 +45,8 @@ struct ReplanView {
   // When the committed trajectory repairs the plan before it (a collision round that kept its
   // end): that plan's replan point, in seconds from the committed trajectory's start.
   std::optional<double> repaired_replan_point_s;
+  // When it was kept over a later halfway answer: its next replan point (replanPointAfterKeepS).
+  std::optional<double> kept_replan_point_s;
   // Set when a newly mapped obstacle threatens the committed trajectory: the time from its
   // detection until the vehicle would reach it (the smallest, if seen again before a round).
   std::optional<double> collision_eta_s;
@@ -64,8 +66,10 @@ bool isSlowPlan(double duration_s, double bound_s, const ArbiterParams& params);
 // faster way) - and, for a repair of the plan before it (same end), no later than that plan's
 // own point: repairs must not postpone the replan toward a new local target, or the vehicle
 // keeps braking toward the old plan's end.
+// A trajectory kept over a later halfway answer replans at kept_replan_point_s instead.
 double replanPointS(double duration_s, double bound_s,
-                    std::optional<double> repaired_replan_point_s, const ArbiterParams& params);
+                    std::optional<double> repaired_replan_point_s, const ArbiterParams& params,
+                    std::optional<double> kept_replan_point_s = std::nullopt);
 
 // Which round (if any) the arbiter starts now.
 Trigger nextTrigger(const ReplanView& view, const ArbiterParams& params);
@@ -115,6 +119,17 @@ bool goalReached(double to_goal_m, bool has_committed, bool committed_ends_at_go
 // straight rest at full speed.
 double answerScore(const Trajectory& answer, const Eigen::Vector3d& goal,
                    const ArbiterParams& params);
+
+// Lazy rule (1)'s exception: a halfway answer whose estimated arrival (answerScore) is later than
+// the committed trajectory's rest by more than halfway_keep_margin_s is not taken while more than
+// halfway_keep_min_left_s of that rest is left. The corridor of a fast start can send SOM into a
+// U-turn toward a shorter path, a loop that costs seconds while the committed way is still open.
+bool keepsCommitted(Trigger trigger, double answer_score_s, double committed_score_s,
+                    double committed_left_s, const ArbiterParams& params);
+
+// The kept trajectory's next replan point, in seconds from its start: replan_fraction of the
+// rest that was left at the round's start (start_s into it).
+double replanPointAfterKeepS(double start_s, double duration_s, const ArbiterParams& params);
 
 // Every reason the arbiter commits a stopping trajectory, decided in one place.
 enum class StopCause {
