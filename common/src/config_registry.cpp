@@ -170,6 +170,14 @@ std::vector<KeySpec> buildKeys() {
                     "A start inside the inflation margin may leave it within this distance")),
       optional(real("som.start_escape_clearance_m", 0.0, 5.0, "0.28",
                     "... only outwards, never nearer to occupied cells than the start or this")),
+      optional(real("som.lead_min_speed_mps", 0.0, 100.0, "1.0",
+                    "A start at least this fast whose A* path turns away sharply also tries a path "
+                    "that first goes on ahead; the faster verified answer wins")),
+      optional(
+          real("som.lead_min_turn_deg", 0.0, 180.0, "45.0",
+               "... when the path's first leg turns away from the velocity by more than this")),
+      optional(real("som.lead_reach", 0.0, 10.0, "1.5",
+                    "... from a point at most this many braking distances ahead (0: never)")),
       optional(real("som.corridor_box_margin_m", 0.3, 20.0, "1.0",
                     "Obstacle points / polytope bound: seed box grown by this (x, y)")),
       optional(real("som.corridor_box_margin_z_m", 0.2, 20.0, "0.5", "... and by this vertically")),

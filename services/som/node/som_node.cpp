@@ -44,14 +44,17 @@ void SomNode::onPlanRequest(const plan_request_t& req) {
   last_ = planner_.plan(receiver_.grid(), startStateOf(req), toVec3(req.target), req.max_speed_mps);
   const int64_t compute_us = wallTimeUs() - t0;
   const som::PlanTimings& t = last_.timings;
-  char split[240];
+  char split[320];
   std::snprintf(split, sizeof(split),
                 "A* %.2f ms, corridor %.2f ms (%d polytopes), optimisation %.2f ms (%d evals), "
-                "verification %.2f ms%s",
+                "verification %.2f ms%s%s",
                 t.astar.wall_us * 1e-3, t.corridor.wall_us * 1e-3,
                 static_cast<int>(last_.corridor.polytopes.size()), t.optimize.wall_us * 1e-3,
                 last_.optimizer_evaluations, t.verify.wall_us * 1e-3,
-                last_.check_margin_retries > 0 ? "; planned twice, off the arbiter's margin" : "");
+                last_.check_margin_retries > 0 ? "; planned twice, off the arbiter's margin" : "",
+                last_.lead_paths_taken > 0 ? "; on a path from a point ahead"
+                : last_.lead_paths > 0     ? "; a path from a point ahead was slower"
+                                           : "");
   result.status = last_.ok() ? plan_result_t::STATUS_OK : plan_result_t::STATUS_FAILED;
   result.reason = toWireReason(last_.status);
   result.detail =

@@ -25,6 +25,9 @@ SomParams loadSomParams(const Config& c) {
   p.astar_heuristic_weight = c.getDouble("som.astar_heuristic_weight");
   p.start_escape_radius_m = c.getDouble("som.start_escape_radius_m");
   p.start_escape_clearance_m = c.getDouble("som.start_escape_clearance_m");
+  p.lead.min_speed_mps = c.getDouble("som.lead_min_speed_mps");
+  p.lead.min_turn_deg = c.getDouble("som.lead_min_turn_deg");
+  p.lead.reach = c.getDouble("som.lead_reach");
 
   CorridorParams& k = p.corridor;
   k.box_margin_m = c.getDouble("som.corridor_box_margin_m");

@@ -181,11 +181,46 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
     }
     return std::nullopt;
   };
-  std::optional<PlanStatus> failed = corridorToVerified(p.corridor.check_inflation_m);
-  if (!failed && p.arbiter_check_inflation_m > p.corridor.check_inflation_m &&
-      entersCheckMargin(out.trajectory, grid, p.arbiter_check_inflation_m)) {
-    ++out.check_margin_retries;
-    failed = corridorToVerified(p.arbiter_check_inflation_m);
+  auto pathToVerified = [&]() -> std::optional<PlanStatus> {
+    std::optional<PlanStatus> failed = corridorToVerified(p.corridor.check_inflation_m);
+    if (!failed && p.arbiter_check_inflation_m > p.corridor.check_inflation_m &&
+        entersCheckMargin(out.trajectory, grid, p.arbiter_check_inflation_m)) {
+      ++out.check_margin_retries;
+      failed = corridorToVerified(p.arbiter_check_inflation_m);
+    }
+    return failed;
+  };
+  std::optional<PlanStatus> failed = pathToVerified();
+
+  // A fast start whose path turns away sharply: also the path that first goes on ahead; the
+  // faster verified trajectory (both end at the target at rest) is the answer.
+  if (!start_in_margin && out.path.size() >= 2 &&
+      turnsAwayFromVelocity(start, out.path[1], p.lead)) {
+    if (const auto lead = leadPoint(grid, start, p.max_acc_mps2, bound_lo, bound_hi, p.lead)) {
+      step.restart();
+      const AStarResult ahead = astar_.search(grid, *lead, target, astar_options);
+      out.astar_expansions += ahead.expansions;
+      step.addTo(&out.timings.astar);
+      if (ahead.ok()) {
+        PlanOutput first = out;
+        out.path = {start.position};
+        for (const Eigen::Vector3d& q : shortenPath(grid, withoutCollinearPoints(ahead.path)))
+          out.path.push_back(q);
+        ++out.lead_paths;
+        const std::optional<PlanStatus> failed_ahead = pathToVerified();
+        if (!failed_ahead && (failed || out.trajectory.duration() < first.trajectory.duration())) {
+          failed = std::nullopt;
+          ++out.lead_paths_taken;
+        } else {
+          first.timings = out.timings;  // both tries count
+          first.lead_paths = out.lead_paths;
+          first.astar_expansions = out.astar_expansions;
+          first.optimizer_evaluations = out.optimizer_evaluations;
+          first.check_margin_retries = out.check_margin_retries;
+          out = std::move(first);
+        }
+      }
+    }
   }
   if (failed) return finish(*failed, out.detail);
   return finish(PlanStatus::kOk, "");

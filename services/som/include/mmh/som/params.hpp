@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "mmh/common/config.hpp"
+#include "mmh/som/lead_point.hpp"
 
 namespace mmh::som {
 
@@ -88,6 +89,9 @@ struct SomParams {
   // The arbiter's check inflation (arbiter.check_inflation_m): an answer that enters a cell it
   // blocks is planned again with such cells kept out of the corridor (0: never).
   double arbiter_check_inflation_m = 0.25;
+  // A fast start whose A* path turns away sharply also tries a path that first goes on ahead
+  // (lead_point.hpp); the faster verified trajectory is the answer.
+  LeadPointParams lead;
   CorridorParams corridor;
   OptimizerParams optimizer;
   VerifyParams verify;

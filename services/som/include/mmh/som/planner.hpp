@@ -42,6 +42,9 @@ struct PlanOutput {
   // Plans made again with the check-margin faces (the first ran through a cell the arbiter's
   // check margin blocks; see Planner::plan).
   int check_margin_retries = 0;
+  // Second candidates from a point ahead of a fast start (lead_point.hpp), and how many won.
+  int lead_paths = 0;
+  int lead_paths_taken = 0;
   int64_t astar_expansions = 0;
   VerifyReport verify;
   PlanTimings timings;
