@@ -53,7 +53,8 @@ void SomNode::onPlanRequest(const plan_request_t& req) {
                 last_.optimizer_evaluations, t.verify.wall_us * 1e-3,
                 last_.check_margin_retries > 0 ? "; planned twice, off the arbiter's margin" : "",
                 last_.lead_paths_taken > 0 ? "; on a path from a point ahead"
-                : last_.lead_paths > 0     ? "; a path from a point ahead was slower"
+                : last_.lead_paths > 0     ? (last_.ok() ? "; a path from a point ahead was slower"
+                                                         : "; also tried from a point ahead")
                                            : "");
   result.status = last_.ok() ? plan_result_t::STATUS_OK : plan_result_t::STATUS_FAILED;
   result.reason = toWireReason(last_.status);

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "mmh/common/vehicle_limits.hpp"
-#include "mmh/som/seed_visibility.hpp"
 
 namespace mmh::som {
 
@@ -63,6 +62,25 @@ double exitArcLength(const PathCurve& path, const Polytope& poly, double from) {
 
 namespace {
 
+// Straight segment free of blocked cells (samples a quarter voxel apart); cells of the escape
+// zone count as free.
+bool segmentVisible(const VoxelGrid& grid, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                    const EscapeZone& escape) {
+  const int n =
+      std::max(1, static_cast<int>(std::ceil((b - a).norm() / (0.25 * grid.resolution()))));
+  const double r2 = escape.radius * escape.radius;
+  for (int i = 0; i <= n; ++i) {
+    const Eigen::Vector3d p = a + (b - a) * (static_cast<double>(i) / n);
+    const Eigen::Vector3i c = grid.localIndexOf(p);
+    if (!grid.isBlocked(c)) continue;
+    if (escape.radius > 0.0 && (grid.centerOfLocal(c) - escape.center).squaredNorm() <= r2 &&
+        escape.frees(grid, c, grid.centerOfLocal(c)))
+      continue;
+    return false;
+  }
+  return true;
+}
+
 // A point inside `poly` at least `margin` from its faces, found on the segment from `p` towards
 // `center` (the nearest such point to p); the best point of the segment if none is that deep.
 Eigen::Vector3d pullInside(const Polytope& poly, const Eigen::Vector3d& p,
@@ -78,6 +96,16 @@ Eigen::Vector3d pullInside(const Polytope& poly, const Eigen::Vector3d& p,
     }
   }
   return best;
+}
+
+// Free triangle: segments from `c` to points along [a, b] at most half a voxel apart.
+bool triangleVisible(const VoxelGrid& grid, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                     const Eigen::Vector3d& c, const EscapeZone& escape) {
+  const int n =
+      std::max(1, static_cast<int>(std::ceil((b - a).norm() / (0.5 * grid.resolution()))));
+  for (int i = 0; i <= n; ++i)
+    if (!segmentVisible(grid, c, a + (b - a) * (static_cast<double>(i) / n), escape)) return false;
+  return true;
 }
 
 // Where a vehicle at p moving at v stops when braking at a_max, pulled back along the way until
@@ -114,15 +142,6 @@ bool CorridorBuilder::build(const VoxelGrid& grid, const std::vector<Eigen::Vect
   inflation.early_round_margin_m = params.early_round_margin_m;
   const double step = grid.resolution();
 
-  // Where the corridor must keep out of the check margin's cells, its seeds first try to keep
-  // clear of blocked cells by more than the fence points' offset: a seed that grazes a cell
-  // keeps the fence point beside it inside its polytope, and the trajectory may then touch the
-  // cell. Without such a seed, the plain visible one.
-  std::vector<double> seed_clearances;
-  if (params.check_inflation_m > 0.0)
-    seed_clearances.push_back(2.0 * params.check_face_clearance_m);
-  seed_clearances.push_back(0.0);
-
   std::vector<Polytope> polys;
   std::vector<Eigen::Vector3d> junctions;
   // Seed i runs from `a` (the start, then the junction with the previous polytope) to the
@@ -136,13 +155,12 @@ bool CorridorBuilder::build(const VoxelGrid& grid, const std::vector<Eigen::Vect
     }
     double seed_s = -1.0;
     const double far = std::min(path.length(), progress + params.seed_length_m);
-    for (double clearance : seed_clearances) {
-      for (double s = far; s > progress + 1e-9 && seed_s < 0.0; s -= step) {
-        if ((path.pointAt(s) - a).norm() <= params.seed_length_m &&
-            segmentVisible(grid, a, path.pointAt(s), escape, clearance))
-          seed_s = s;
+    for (double s = far; s > progress + 1e-9; s -= step) {
+      if ((path.pointAt(s) - a).norm() <= params.seed_length_m &&
+          segmentVisible(grid, a, path.pointAt(s), escape)) {
+        seed_s = s;
+        break;
       }
-      if (seed_s >= 0.0) break;
     }
     if (seed_s < 0.0) {
       // Nothing ahead is visible from the pulled-in junction: put the junction back on the
@@ -167,18 +185,13 @@ bool CorridorBuilder::build(const VoxelGrid& grid, const std::vector<Eigen::Vect
       const Eigen::Vector3d q = stoppingPoint(grid, a, start_velocity, max_acc_mps2, escape);
       if ((q - a).norm() > 0.1) {
         // The triangle start - seed end - stopping point must be free; shorten the seed if not.
-        bool found = false;
-        for (double clearance : seed_clearances) {
-          for (double t : {1.0, 0.5, 0.25}) {
-            const Eigen::Vector3d bt = a + t * (b - a);
-            if ((q - bt).norm() > 0.1 && triangleVisible(grid, a, bt, q, escape, clearance)) {
-              seed = {a, bt, q};
-              seed_s = progress + t * (seed_s - progress);  // a is the start, on the path
-              found = true;
-              break;
-            }
+        for (double t : {1.0, 0.5, 0.25}) {
+          const Eigen::Vector3d bt = a + t * (b - a);
+          if ((q - bt).norm() > 0.1 && triangleVisible(grid, a, bt, q, escape)) {
+            seed = {a, bt, q};
+            seed_s = progress + t * (seed_s - progress);  // a is the start, on the path
+            break;
           }
-          if (found) break;
         }
       }
     }

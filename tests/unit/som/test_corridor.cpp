@@ -173,13 +173,3 @@ TEST(PathCurve, SegmentEndAfterAVertexIsTheNextSegments) {
   EXPECT_NEAR(path.segmentEndAfter(0.5), 0.871, 1e-9);
   EXPECT_NEAR(path.segmentEndAfter(1.371), 1.371, 1e-9);  // the end stays the end
 }
-
-TEST(Corridor, KeepingOutOfTheCheckMarginStillBuildsAValidCorridorEverywhere) {
-  // With the arbiter's check margin fenced, seeds first try to keep clear of blocked cells and
-  // fall back to plain visible ones (the wall's gap and the S-bend's corners leave no room for
-  // the clearance everywhere): the corridor is as valid as without the fence.
-  mmh::som::CorridorParams params;
-  params.check_inflation_m = 0.25;
-  for (const som_test::World& w : {som_test::pillars(), som_test::wallWithGap(), som_test::sBend()})
-    expectValidCorridor(w, buildCorridor(w, params).corridor);
-}
