@@ -10,8 +10,12 @@ Geofence loadGeofence(const Config& config) {
   return {config.getVector3("geofence.min_m"), config.getVector3("geofence.max_m")};
 }
 
+bool insideBox(const Eigen::Vector3d& p, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+  return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
+}
+
 bool insideGeofence(const Geofence& fence, const Eigen::Vector3d& p) {
-  return (p.array() >= fence.min_m.array()).all() && (p.array() <= fence.max_m.array()).all();
+  return insideBox(p, fence.min_m, fence.max_m);
 }
 
 std::string geofenceViolation(const Geofence& fence, const Eigen::Vector3d& p,

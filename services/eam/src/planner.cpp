@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "mmh/common/collision_check.hpp"
+#include "mmh/common/geofence.hpp"
 #include "mmh/common/narrow_space.hpp"
 #include "mmh/common/trajectory_limits.hpp"
 #include "mmh/eam/bspline_optimizer.hpp"
@@ -56,10 +57,6 @@ PlanResult fail(PlanResult r, PlanStatus reason, std::string detail) {
   r.detail = std::move(detail);
   r.trajectory = Trajectory();
   return r;
-}
-
-bool inBox(const Eigen::Vector3d& p, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
-  return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
 }
 
 // Ratio by which the knot span must grow so that the maxima fall within the limits.
@@ -554,7 +551,7 @@ PlanResult Planner::plan(const VoxelGrid& grid, const PlanRequest& req) {
   if (!req.reference.empty() && !req.reference.isFinite())
     return fail(r, PlanStatus::kBadInput, "reference trajectory is not finite or has empty pieces");
   if (!grid.valid()) return fail(r, PlanStatus::kNoMap, "no map");
-  if (!inBox(req.target, P.geofence_min, P.geofence_max))
+  if (!insideBox(req.target, P.geofence_min, P.geofence_max))
     return fail(r, PlanStatus::kTargetOutOfBounds, "target outside the geofence");
   if ((req.target - req.start.position).norm() < 1e-3 && req.start.velocity.norm() < 1e-3 &&
       req.start.acceleration.norm() < 1e-3)

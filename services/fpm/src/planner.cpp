@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mmh/common/geofence.hpp"
 #include "mmh/common/trajectory_limits.hpp"
 #include "mmh/common/trajectory_verifier.hpp"
 #include "mmh/fpm/initial_guess.hpp"
@@ -23,8 +24,7 @@ bool finite(const Eigen::Vector3d& v) {
 }
 
 bool inside(const Eigen::Vector3d& p, const Params& params) {
-  return (p.array() >= params.geofence_min_m.array()).all() &&
-         (p.array() <= params.geofence_max_m.array()).all();
+  return insideBox(p, params.geofence_min_m, params.geofence_max_m);
 }
 
 }  // namespace

@@ -8,6 +8,17 @@
 
 namespace mmh {
 
+namespace {
+
+// What the PLAN_RESULT detail says about the second candidate of a fast start (lead_point.hpp).
+const char* leadPathNote(const som::PlanOutput& out) {
+  if (out.lead_paths_taken > 0) return "; on a path from a point ahead";
+  if (out.lead_paths == 0) return "";
+  return out.ok() ? "; a path from a point ahead was slower" : "; also tried from a point ahead";
+}
+
+}  // namespace
+
 SomNode::SomNode(ServiceContext& ctx, const Config& config)
     : ctx_(ctx),
       receiver_(config.getDouble("map.inflation_m")),
@@ -52,10 +63,7 @@ void SomNode::onPlanRequest(const plan_request_t& req) {
                 static_cast<int>(last_.corridor.polytopes.size()), t.optimize.wall_us * 1e-3,
                 last_.optimizer_evaluations, t.verify.wall_us * 1e-3,
                 last_.check_margin_retries > 0 ? "; planned twice, off the arbiter's margin" : "",
-                last_.lead_paths_taken > 0 ? "; on a path from a point ahead"
-                : last_.lead_paths > 0     ? (last_.ok() ? "; a path from a point ahead was slower"
-                                                         : "; also tried from a point ahead")
-                                           : "");
+                leadPathNote(last_));
   result.status = last_.ok() ? plan_result_t::STATUS_OK : plan_result_t::STATUS_FAILED;
   result.reason = toWireReason(last_.status);
   result.detail =

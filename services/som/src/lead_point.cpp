@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "mmh/common/collision_check.hpp"
+#include "mmh/common/geofence.hpp"
 #include "mmh/common/vehicle_limits.hpp"
 
 namespace mmh::som {
@@ -26,8 +27,8 @@ std::optional<Eigen::Vector3d> leadPoint(const VoxelGrid& grid, const KinematicS
   for (double d = params.reach * stoppingDistance(speed, max_acc_mps2); d >= kMinAheadM;
        d -= grid.resolution()) {
     const Eigen::Vector3d q = start.position + d * dir;
-    if ((q.array() < lo.array()).any() || (q.array() > hi.array()).any()) continue;
-    if (!grid.containsPoint(q) || !isSegmentFree(grid, start.position, q)) continue;
+    if (!insideBox(q, lo, hi) || !grid.containsPoint(q)) continue;
+    if (!isSegmentFree(grid, start.position, q)) continue;
     return q;
   }
   return std::nullopt;

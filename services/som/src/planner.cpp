@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "mmh/common/collision_check.hpp"
+#include "mmh/common/geofence.hpp"
 
 namespace mmh::som {
 
@@ -41,9 +42,6 @@ class StepTimer {
   std::chrono::steady_clock::time_point wall_;
   double cpu_ = 0.0;
 };
-bool inBox(const Eigen::Vector3d& p, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
-  return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
-}
 
 // Drops the middle of every straight run of the grid path: shortenPath's line-of-sight tests
 // then have far fewer candidates (its cost is quadratic in them), for the same kind of result.
@@ -82,9 +80,9 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
   if (!grid.valid()) return finish(PlanStatus::kNoMap, "no map");
   const Eigen::Vector3d bound_lo = p.geofence_min.cwiseMax(grid.minCorner());
   const Eigen::Vector3d bound_hi = p.geofence_max.cwiseMin(grid.maxCorner());
-  if (!grid.containsPoint(start.position) || !inBox(start.position, bound_lo, bound_hi))
+  if (!grid.containsPoint(start.position) || !insideBox(start.position, bound_lo, bound_hi))
     return finish(PlanStatus::kBadInput, "start outside the geofence or the map window");
-  if (!grid.containsPoint(target) || !inBox(target, bound_lo, bound_hi))
+  if (!grid.containsPoint(target) || !insideBox(target, bound_lo, bound_hi))
     return finish(PlanStatus::kTargetOutOfBounds, "target outside the geofence or the map window");
   const double tol = 1.0 + p.verify.limit_tolerance;
   if (start.velocity.norm() > p.max_vel_mps * tol ||

@@ -111,3 +111,17 @@ TEST(Geofence, AViolationNamesThePointTheAxisAndTheKeys) {
   EXPECT_NE(mmh::geofenceViolation(fence, Vector3d(0, 0, 0.1), "x").find("z = 0.1 < 0.3"),
             std::string::npos);
 }
+
+TEST(Geofence, ABoxHoldsItsFacesAndNothingBeyondAnyOfThem) {
+  const Vector3d lo(-1, -2, 0.3), hi(1, 2, 2.7);
+  EXPECT_TRUE(mmh::insideBox(Vector3d(0, 0, 1), lo, hi));
+  EXPECT_TRUE(mmh::insideBox(lo, lo, hi));
+  EXPECT_TRUE(mmh::insideBox(hi, lo, hi));
+  for (int axis = 0; axis < 3; ++axis) {
+    Vector3d below = Vector3d(0, 0, 1), above = below;
+    below[axis] = lo[axis] - 1e-9;
+    above[axis] = hi[axis] + 1e-9;
+    EXPECT_FALSE(mmh::insideBox(below, lo, hi)) << axis;
+    EXPECT_FALSE(mmh::insideBox(above, lo, hi)) << axis;
+  }
+}

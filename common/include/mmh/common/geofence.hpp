@@ -17,6 +17,9 @@ struct Geofence {
 // Throws ConfigError naming the key.
 Geofence loadGeofence(const Config& config);
 
+// p inside the axis-aligned box [lo, hi], faces included.
+bool insideBox(const Eigen::Vector3d& p, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
+
 bool insideGeofence(const Geofence& fence, const Eigen::Vector3d& p);
 
 // Empty when p lies inside the fence; else a sentence for the user naming `what` (e.g. "the
