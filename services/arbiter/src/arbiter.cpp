@@ -321,7 +321,10 @@ void Arbiter::evaluate(int64_t now) {
   const bool braking_in_stop =
       committed_.mode == Mode::kStop && odometry_->velocity.norm() > params_.braking_speed_mps;
   const bool is_stuck = stuck != StuckResponse::kNone;
-  if (retryThrottled(trigger, braking_in_stop, is_stuck, view.since_last_round_s, params_)) return;
+  if (retryThrottled(trigger, braking_in_stop, view.collision_eta_s.has_value(), is_stuck,
+                     view.since_last_round_s, params_)) {
+    return;
+  }
   const std::optional<double> since_back_off =
       last_backoff_utime_ ? std::optional<double>((now - *last_backoff_utime_) * kUs)
                           : std::nullopt;
@@ -629,8 +632,8 @@ void Arbiter::stopIfNoTimeLeft(int64_t now, bool by_deadline, const std::string&
   if (!stop.danger_ahead || stop.committed_is_stop) return;
   const bool stuck =
       stuckResponse(progress_.secondsWithoutProgress(now), params_) != StuckResponse::kNone;
-  stop.retry_held_back =
-      retryThrottled(Trigger::kRetry, false, stuck, (now - last_round_utime_) * kUs, params_);
+  stop.retry_held_back = retryThrottled(Trigger::kRetry, false, false, stuck,
+                                        (now - last_round_utime_) * kUs, params_);
   stop.stop_can_wait = stopCanWait(now);
   if (!shouldStop(StopCause::kNoUsableAnswer, stop, params_)) return;
   commitStop(now,

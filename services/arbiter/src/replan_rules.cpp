@@ -93,11 +93,11 @@ bool collisionNeedsRoundNow(double hit_s, double elapsed_s, double replan_point_
            hit_s > replan_point_s + params.collision_margin_s);
 }
 
-bool retryThrottled(Trigger trigger, bool braking_in_stop, bool stuck, double since_last_round_s,
-                    const ArbiterParams& params) {
-  // (A collision on the stop itself is not throttled: only an evasive plan can help then.)
+bool retryThrottled(Trigger trigger, bool braking_in_stop, bool collision_pending, bool stuck,
+                    double since_last_round_s, const ArbiterParams& params) {
   if (trigger != Trigger::kRetry) return false;
-  return (braking_in_stop && since_last_round_s < params.stop_retry_period_s) ||
+  return (braking_in_stop && !collision_pending &&
+          since_last_round_s < params.stop_retry_period_s) ||
          (stuck && since_last_round_s < params.stuck_retry_period_s);
 }
 

@@ -436,6 +436,39 @@ TEST_F(ArbiterRules, AStopAfterAFailedRoundAnswersTheDangerThatRoundWasFor) {
   EXPECT_EQ(decisions.back().threat_seen_utime, at(t1 - 0.02));
 }
 
+TEST_F(ArbiterRules, AnObstacleMappedOnABrakingStopIsAnsweredOnThatMap) {
+  auto a = started(Policy::kMmh);
+  KinematicState before;
+  const double t1 = flyToCruise(*a, &before);
+  putPillar(before.position.x() + 2.5, 0.0, 0.4);
+  a->onMapUpdated(grid_, ++map_seq_, at(t1), at(t1));
+  // Every mode fails: the vehicle brakes in a stop.
+  std::optional<CommitOut> stop;
+  double t = t1;
+  for (auto requests = a->takeRequests(); !stop && t < t1 + 1.0;) {
+    for (auto& r : requests) a->onAnswer(failedAnswer(r), at(t + 0.001));
+    stop = a->takeCommit();
+    t += 0.01;
+    if (!stop) requests = fly(*a, t, t);
+  }
+  ASSERT_TRUE(stop.has_value());
+  ASSERT_EQ(stop->mode, Mode::kStop);
+  a->takeDecisions();
+  // A map 50 ms later shows an obstacle on the stop's own way, well within the retry period.
+  ASSERT_LT(0.1, params_.stop_retry_period_s);
+  const Trajectory& braking = stop->trajectory;
+  const Vector3d ahead = braking.position(0.6 * braking.duration());
+  putPillar(ahead.x(), ahead.y() + 0.3, 0.2);
+  const double t2 = t + 0.05;
+  const int64_t now = at(t2);
+  ASSERT_TRUE(mmh::firstCollisionTime(grid_, braking, (now - stop->start_utime) * 1e-6,
+                                      braking.duration()));
+  a->onOdometry(braking.state((now - stop->start_utime) * 1e-6), now);
+  a->onMapUpdated(grid_, ++map_seq_, now, now);
+  // Only an evasive plan can help: a round on this map, not after the retry period.
+  EXPECT_EQ(a->takeRequests().size(), 1u);
+}
+
 TEST_F(ArbiterRules, AFarDangerLetsTheStopWaitUntilItCannotWaitAnyLonger) {
   params_.stale_map_s = 10.0;  // no new maps in this test, and no stale-map stop either
   params_.defer_far_collisions = false;

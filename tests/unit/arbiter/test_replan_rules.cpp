@@ -215,16 +215,24 @@ TEST(ReplanRules, CollisionsBeyondTheHalfwayReplanWaitForIt) {
 
 TEST(ReplanRules, RetriesWhileAStopBrakesWaitTheirPeriod) {
   const ArbiterParams p = paramsFor(Policy::kMmh);
-  EXPECT_TRUE(retryThrottled(Trigger::kRetry, true, false, p.stop_retry_period_s / 2, p));
-  EXPECT_FALSE(retryThrottled(Trigger::kRetry, true, false, p.stop_retry_period_s * 2, p));
-  EXPECT_FALSE(retryThrottled(Trigger::kCollision, true, false, 0.0, p));
-  EXPECT_FALSE(retryThrottled(Trigger::kRetry, false, false, 0.0, p));
+  EXPECT_TRUE(retryThrottled(Trigger::kRetry, true, false, false, p.stop_retry_period_s / 2, p));
+  EXPECT_FALSE(retryThrottled(Trigger::kRetry, true, false, false, p.stop_retry_period_s * 2, p));
+  EXPECT_FALSE(retryThrottled(Trigger::kCollision, true, false, false, 0.0, p));
+  EXPECT_FALSE(retryThrottled(Trigger::kRetry, false, false, false, 0.0, p));
+}
+
+TEST(ReplanRules, ANewObstacleOnTheStopItselfIsRetriedAtOnce) {
+  const ArbiterParams p = paramsFor(Policy::kMmh);
+  EXPECT_FALSE(retryThrottled(Trigger::kRetry, true, true, false, 0.0, p));
+  // Stuck, the same map fails the same way: that period still holds.
+  EXPECT_TRUE(retryThrottled(Trigger::kRetry, true, true, true, p.stuck_retry_period_s / 2, p));
 }
 
 TEST(ReplanRules, RetriesWhileStuckComeAtMostEveryStuckRetryPeriod) {
   const ArbiterParams p = paramsFor(Policy::kMmh);
-  EXPECT_TRUE(retryThrottled(Trigger::kRetry, false, true, p.stuck_retry_period_s / 2, p));
-  EXPECT_FALSE(retryThrottled(Trigger::kRetry, false, true, p.stuck_retry_period_s * 1.1, p));
+  EXPECT_TRUE(retryThrottled(Trigger::kRetry, false, false, true, p.stuck_retry_period_s / 2, p));
+  EXPECT_FALSE(
+      retryThrottled(Trigger::kRetry, false, false, true, p.stuck_retry_period_s * 1.1, p));
 }
 
 TEST(ReplanRules, NoProgressMeansStuckThenUnreachable) {

@@ -85,10 +85,11 @@ bool collisionNeedsRoundNow(double hit_s, double elapsed_s, double replan_point_
                             bool ends_at_goal, const ArbiterParams& params);
 
 // While a stopping trajectory still brakes, retries wait stop_retry_period_s between rounds:
-// plans from hard-braking states rarely fit the limits. While stuck, they wait
-// stuck_retry_period_s: the same round on the same map fails the same way.
-bool retryThrottled(Trigger trigger, bool braking_in_stop, bool stuck, double since_last_round_s,
-                    const ArbiterParams& params);
+// plans from hard-braking states rarely fit the limits; not when a newly mapped obstacle lies on
+// the stop itself (collision_pending), where only an evasive plan can help. While stuck, they
+// wait stuck_retry_period_s: the same round on the same map fails the same way.
+bool retryThrottled(Trigger trigger, bool braking_in_stop, bool collision_pending, bool stuck,
+                    double since_last_round_s, const ArbiterParams& params);
 
 // The stuck detector: what no progress toward the goal for no_progress_s calls for.
 enum class StuckResponse {
