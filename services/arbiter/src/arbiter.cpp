@@ -135,6 +135,9 @@ void Arbiter::onMapUpdated(const VoxelGrid& grid, int64_t map_seq, int64_t map_u
     if (threat_s) {
       collision_eta_s_ = collision_eta_s_ ? std::min(*collision_eta_s_, *threat_s) : *threat_s;
       if (!threat_seen_utime_) threat_seen_utime_ = map_utime;
+    } else {
+      // The danger a failed round left unanswered is gone from this map: no commit answers it.
+      threat_seen_utime_.reset();
     }
   }
   evaluate(now_);

@@ -469,6 +469,47 @@ TEST_F(ArbiterRules, AnObstacleMappedOnABrakingStopIsAnsweredOnThatMap) {
   EXPECT_EQ(a->takeRequests().size(), 1u);
 }
 
+TEST_F(ArbiterRules, ADangerThatANewMapNoLongerShowsIsAnsweredByNoLaterCommit) {
+  params_.stale_map_s = 10.0;
+  params_.emergency_horizon_s = 30.0;  // every collision is an emergency: EAM
+  params_.defer_far_collisions = false;
+  auto a = started(Policy::kMmh);
+  KinematicState before;
+  const double t1 = flyToCruise(*a, &before);
+  a->takeDecisions();
+  // A far pillar on the committed trajectory: EAM fails, then SOM; the stop may wait.
+  putPillar(before.position.x() + 7.0, 0.0, 0.4);
+  a->onMapUpdated(grid_, ++map_seq_, at(t1), at(t1));
+  int failed = 0;
+  auto requests = a->takeRequests();
+  for (double t = t1 + 0.01; t < t1 + 0.045; t += 0.01) {
+    for (auto& r : requests) {
+      a->onAnswer(failedAnswer(r), at(t - 0.005));
+      ++failed;
+    }
+    requests = fly(*a, t, t, false);
+  }
+  ASSERT_EQ(failed, 2);
+  ASSERT_FALSE(a->takeCommit().has_value());
+  // The next map shows no pillar (it was noise): the danger is gone.
+  for (int64_t i = 0; i < grid_.numCells(); ++i) grid_.setLinear(i, mmh::Occupancy::kFree);
+  a->onMapUpdated(grid_, ++map_seq_, at(t1 + 0.05), at(t1 + 0.05));
+  // The next commit (a retry from the new map) answers no danger.
+  double t = t1 + 0.05;
+  auto retry = a->takeRequests();
+  while (retry.empty() && t < t1 + 2.0) {
+    t += 0.01;
+    retry = fly(*a, t, t);
+  }
+  ASSERT_FALSE(retry.empty());
+  a->onAnswer(okAnswer(retry[0]), at(t + 0.001));
+  ASSERT_TRUE(a->takeCommit().has_value());
+  const auto decisions = a->takeDecisions();
+  ASSERT_FALSE(decisions.empty());
+  EXPECT_EQ(decisions.back().outcome, Outcome::kCommitted) << decisions.back().detail;
+  EXPECT_EQ(decisions.back().threat_seen_utime, 0);
+}
+
 TEST_F(ArbiterRules, AFarDangerLetsTheStopWaitUntilItCannotWaitAnyLonger) {
   params_.stale_map_s = 10.0;  // no new maps in this test, and no stale-map stop either
   params_.defer_far_collisions = false;
