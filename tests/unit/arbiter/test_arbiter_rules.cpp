@@ -108,6 +108,15 @@ class ArbiterRules : public ::testing::Test {
     return t1;
   }
 
+  // Flown to cruise speed (flyToCruise), then a map at that time shows a pillar `ahead_m` ahead of
+  // the vehicle on the committed trajectory; returns that time in seconds.
+  double cruiseIntoMappedPillar(Arbiter& a, double ahead_m, KinematicState* before) {
+    const double t1 = flyToCruise(a, before);
+    putPillar(before->position.x() + ahead_m, 0.0, 0.4);
+    a.onMapUpdated(grid_, ++map_seq_, at(t1), at(t1));
+    return t1;
+  }
+
   // Never making progress (no step toward the goal is ever large enough: stuck once a round
   // fails), flown to cruise speed with a pillar 2.5 m ahead, not yet on the map; *t1 the time.
   std::unique_ptr<Arbiter> stuckBeforeAPillar(double* t1) {
@@ -361,10 +370,8 @@ TEST_F(ArbiterRules, SomFailureFallsBackToEam) {
 TEST_F(ArbiterRules, NoAnswerByTheDeadlineWithDangerAheadCommitsAStop) {
   auto a = started(Policy::kMmh);
   KinematicState before;
-  const double t1 = flyToCruise(*a, &before);
   // Near enough that a stop begun stop_decision_margin_s later would reach it.
-  putPillar(before.position.x() + 2.5, 0.0, 0.4);
-  a->onMapUpdated(grid_, ++map_seq_, at(t1), at(t1));
+  const double t1 = cruiseIntoMappedPillar(*a, 2.5, &before);
   auto eam = a->takeRequests();
   ASSERT_EQ(eam.size(), 1u);
   // EAM never answers; time passes beyond the deadline.
@@ -439,9 +446,7 @@ TEST_F(ArbiterRules, AStopAfterAFailedRoundAnswersTheDangerThatRoundWasFor) {
 TEST_F(ArbiterRules, AnObstacleMappedOnABrakingStopIsAnsweredOnThatMap) {
   auto a = started(Policy::kMmh);
   KinematicState before;
-  const double t1 = flyToCruise(*a, &before);
-  putPillar(before.position.x() + 2.5, 0.0, 0.4);
-  a->onMapUpdated(grid_, ++map_seq_, at(t1), at(t1));
+  const double t1 = cruiseIntoMappedPillar(*a, 2.5, &before);
   // Every mode fails: the vehicle brakes in a stop.
   std::optional<CommitOut> stop;
   double t = t1;
@@ -475,11 +480,9 @@ TEST_F(ArbiterRules, ADangerThatANewMapNoLongerShowsIsAnsweredByNoLaterCommit) {
   params_.defer_far_collisions = false;
   auto a = started(Policy::kMmh);
   KinematicState before;
-  const double t1 = flyToCruise(*a, &before);
-  a->takeDecisions();
   // A far pillar on the committed trajectory: EAM fails, then SOM; the stop may wait.
-  putPillar(before.position.x() + 7.0, 0.0, 0.4);
-  a->onMapUpdated(grid_, ++map_seq_, at(t1), at(t1));
+  const double t1 = cruiseIntoMappedPillar(*a, 7.0, &before);
+  a->takeDecisions();
   int failed = 0;
   auto requests = a->takeRequests();
   for (double t = t1 + 0.01; t < t1 + 0.045; t += 0.01) {
