@@ -334,6 +334,9 @@ std::vector<KeySpec> buildKeys() {
       real("arbiter.known_space_margin_m", 0.0, 10.0, "0.3",
            "An answer must stay in mapped space within its stopping distance from the start plus "
            "this"),
+      real("arbiter.known_space_lead_s", 0.0, 5.0, "0.1",
+           "... that stopping distance counted from the point the answer reaches this long (plus "
+           "the replan lead) after its start, at the speed there: the next map checks it again"),
       real("arbiter.slow_plan_replan_s", 0.05, 3600.0, "1.0",
            "A trajectory slower than slow_plan_ratio x its bound is replanned no later than this "
            "after its commit"),

@@ -72,7 +72,8 @@ std::optional<double> firstUnknownWithinReach(const Trajectory& t, double elapse
 }
 
 bool checkAnswer(const Trajectory& t, int64_t answer_start_utime, const RequestedStart& requested,
-                 const VoxelGrid* grid, const ArbiterParams& params, std::string* why) {
+                 const VoxelGrid* grid, const ArbiterParams& params, double reach_lead_s,
+                 std::string* why) {
   const KinematicState& start = requested.state;
   auto fail = [&](const std::string& text) {
     if (why) *why = text;
@@ -125,10 +126,10 @@ bool checkAnswer(const Trajectory& t, int64_t answer_start_utime, const Requeste
                   p.x(), p.y(), p.z());
     return fail(arbiterWords(v.failed) + std::string(where));
   }
-  // The stop from the start's speed must end in space the sensor has seen.
+  // The stop from where the answer is when the next map can check it again must end in space
+  // the sensor has seen: an answer accelerating from rest reaches farther than its start speed.
   if (grid) {
-    const double horizon_m = knownSpaceHorizonM(start.velocity.norm(), params);
-    if (const auto at = firstUnknownWithin(t, *grid, horizon_m, params.check_step_s)) {
+    if (const auto at = firstUnknownWithinReach(t, 0.0, reach_lead_s, *grid, params)) {
       char text[128];
       std::snprintf(text, sizeof(text), "enters unmapped space %.2f s from its start", *at);
       return fail(text);

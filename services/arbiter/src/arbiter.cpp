@@ -548,7 +548,8 @@ void Arbiter::decide(int64_t now, bool by_deadline) {
       continue;
     }
     std::string why;
-    if (!checkAnswer(a.trajectory, a.start_utime, round.start, grid_, params_, &why)) {
+    if (!checkAnswer(a.trajectory, a.start_utime, round.start, grid_, params_,
+                     budget_.replan_lead_s + params_.known_space_lead_s, &why)) {
       ++counters_.rejected_answers;
       notes += std::string(toString(a.mode)) + " rejected: " + why + "; ";
       continue;

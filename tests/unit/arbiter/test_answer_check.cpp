@@ -1,5 +1,5 @@
 // The arbiter's answer check (answer_check.hpp): the rule that the stretch in which the vehicle
-// could stop from its start speed lies in mapped space, on a hand-made grid.
+// could stop lies in mapped space, on a hand-made grid.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -97,12 +97,33 @@ TEST(AnswerCheck, AnAnswerWhoseStopWouldEndInUnmappedSpaceIsRefused) {
   const Trajectory answer = straight(0.0, 1.0, 2.0);
   VoxelGrid g = mappedFreeGrid();
   std::string why;
-  EXPECT_TRUE(checkAnswer(answer, requested.start_utime, requested, &g, p, &why)) << why;
+  EXPECT_TRUE(checkAnswer(answer, requested.start_utime, requested, &g, p, 0.0, &why)) << why;
   markUnknownSlab(g, 0.2, 0.4);
-  EXPECT_FALSE(checkAnswer(answer, requested.start_utime, requested, &g, p, &why));
+  EXPECT_FALSE(checkAnswer(answer, requested.start_utime, requested, &g, p, 0.0, &why));
   EXPECT_NE(why.find("enters unmapped space"), std::string::npos) << why;
   p.known_space_margin_m = 0.1;  // a stop from rest that ends before the slab
-  EXPECT_TRUE(checkAnswer(answer, requested.start_utime, requested, &g, p, &why)) << why;
+  EXPECT_TRUE(checkAnswer(answer, requested.start_utime, requested, &g, p, 0.0, &why)) << why;
+}
+
+TEST(AnswerCheck, AnAnswerSpeedingUpFromRestIsCheckedFromWhereTheNextMapFindsIt) {
+  ArbiterParams p = paramsAroundTheGrid();
+  p.max_acc_mps2 = 2.0;
+  p.known_space_margin_m = 0.3;
+  const RequestedStart requested =
+      requestAtTheOrigin(Eigen::Vector3d::Zero(), Eigen::Vector3d(2.0, 0.0, 0.0));
+  const Trajectory answer = straight(0.0, 2.0, 1.0);
+  // From rest the stop is 0 m: only the margin (0.3 m) must be mapped at the start. After 0.5 s
+  // the vehicle is at x = 0.25 m at 1 m/s and needs 0.25 m to stop, plus the margin: x = 0.8 m.
+  VoxelGrid g = mappedFreeGrid();
+  markUnknownSlab(g, 0.65, 0.75);
+  std::string why;
+  EXPECT_TRUE(checkAnswer(answer, requested.start_utime, requested, &g, p, 0.0, &why)) << why;
+  EXPECT_FALSE(checkAnswer(answer, requested.start_utime, requested, &g, p, 0.5, &why));
+  EXPECT_NE(why.find("enters unmapped space"), std::string::npos) << why;
+  // The same answer with the slab beyond that reach.
+  VoxelGrid farther = mappedFreeGrid();
+  markUnknownSlab(farther, 0.95, 1.05);
+  EXPECT_TRUE(checkAnswer(answer, requested.start_utime, requested, &farther, p, 0.5, &why)) << why;
 }
 
 TEST(AnswerCheck, ARefusedAnswerSaysWhereItMeetsTheMap) {
@@ -112,11 +133,11 @@ TEST(AnswerCheck, ARefusedAnswerSaysWhereItMeetsTheMap) {
   const Trajectory answer = straight(2.0, 0.0, 2.0);  // 4 m along +x
   VoxelGrid g = mappedFreeGrid();
   std::string why;
-  ASSERT_TRUE(checkAnswer(answer, requested.start_utime, requested, &g, p, &why)) << why;
+  ASSERT_TRUE(checkAnswer(answer, requested.start_utime, requested, &g, p, 0.0, &why)) << why;
   // One occupied cell beside the way at x = 3 m: the 0.25 m margin reaches the way.
   g.setInflationRadius(0.25);
   g.set(g.localIndexOf(Eigen::Vector3d(3.05, 0.15, 1.25)), Occupancy::kOccupied);
-  EXPECT_FALSE(checkAnswer(answer, requested.start_utime, requested, &g, p, &why));
+  EXPECT_FALSE(checkAnswer(answer, requested.start_utime, requested, &g, p, 0.0, &why));
   // Where the way enters the margin: about 1.4 s (x = 2.8 m), named with the place.
   EXPECT_EQ(why.rfind("collides with the arbiter's map ", 0), 0u) << why;
   double at_s = 0.0, x = 0.0, y = 0.0, z = 0.0;
@@ -133,7 +154,7 @@ TEST(AnswerCheck, ARefusedAnswerSaysWhereItMeetsTheMap) {
   // A geofence 2 m ahead (0.05 m tolerance): named the same way.
   ArbiterParams fenced = p;
   fenced.geofence_max_m.x() = 2.0;
-  EXPECT_FALSE(checkAnswer(answer, requested.start_utime, requested, nullptr, fenced, &why));
+  EXPECT_FALSE(checkAnswer(answer, requested.start_utime, requested, nullptr, fenced, 0.0, &why));
   ASSERT_EQ(std::sscanf(why.c_str(), "leaves the geofence %lf s from its start, at (%lf, %lf, %lf)",
                         &at_s, &x, &y, &z),
             4)

@@ -1,10 +1,11 @@
 // The arbiter's own check of a mode's answer before it may be committed: it trusts no mode. An
 // answer must take over the committed trajectory without a jump at the requested start, keep
 // the limits, stay in the geofence and collide with nothing in the arbiter's map (a start inside
-// the check margin may leave it, outwards and near the start only) - and the stretch in which the
-// vehicle could stop from its start speed (plus a margin) must lie in space the sensor has seen:
-// planners treat unknown space as free, which is safe far ahead but not where the vehicle will be
-// before it could brake (sideways, backwards or down, where a forward camera never looked).
+// the check margin may leave it, outwards and near the start only) - and its reach must lie in
+// space the sensor has seen: the path until the next map can check it again, then the stretch in
+// which the vehicle could stop from the speed there (plus a margin). Planners treat unknown space
+// as free, which is safe far ahead but not where the vehicle will be before it could brake
+// (sideways, backwards or down, where a forward camera never looked).
 #pragma once
 
 #include <optional>
@@ -42,9 +43,9 @@ std::optional<double> firstUnknownWithinReach(const Trajectory& t, double elapse
 
 // True when `answer` (starting at answer_start_utime) may be committed for `requested`;
 // otherwise false with the first failed check in *why. `grid` may be null (no map yet: no
-// collision checks).
+// collision checks). Its reach (firstUnknownWithinReach) is taken reach_lead_s after its start.
 bool checkAnswer(const Trajectory& answer, int64_t answer_start_utime,
                  const RequestedStart& requested, const VoxelGrid* grid,
-                 const ArbiterParams& params, std::string* why);
+                 const ArbiterParams& params, double reach_lead_s, std::string* why);
 
 }  // namespace mmh::arbiter

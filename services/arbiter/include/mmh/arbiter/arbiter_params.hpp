@@ -67,8 +67,10 @@ struct ArbiterParams {
   // halfway_keep_min_left_s of it is left, and replans again halfway through the rest.
   double halfway_keep_margin_s = 0.5;
   double halfway_keep_min_left_s = 2.0;
-  // An answer must stay in mapped space within its stopping distance from the start plus this.
+  // An answer must stay in mapped space within its stopping distance plus this margin, counted
+  // from the point it reaches known_space_lead_s (plus the replan lead) after its start.
   double known_space_margin_m = 0.3;
+  double known_space_lead_s = 0.1;
   ParallelModes parallel_modes = ParallelModes::kNone;
   double inflation_m = 0.3;              // the planners' map inflation (local target clearance)
   double vehicle_radius_m = 0.15;        // airframe: a stop that brings it into an occupied cell
