@@ -332,8 +332,7 @@ std::vector<KeySpec> buildKeys() {
       real("arbiter.halfway_keep_min_left_s", 0.0, 3600.0, "2.0",
            "... but only while more than this of the committed trajectory is left"),
       real("arbiter.known_space_margin_m", 0.0, 10.0, "0.3",
-           "An answer must stay in mapped space within its stopping distance from the start plus "
-           "this"),
+           "An answer must stay in mapped space within its stopping distance plus this"),
       real("arbiter.known_space_lead_s", 0.0, 5.0, "0.1",
            "... that stopping distance counted from the point the answer reaches this long (plus "
            "the replan lead) after its start, at the speed there: the next map checks it again"),
