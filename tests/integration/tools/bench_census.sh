@@ -2,6 +2,7 @@
 # mmh-bench with a tiny protocol in the EGO-Planner forest (1 map x 1 trial, one density, LiDAR,
 # one --set): the census of stops and stalls is in summary.md, on stdout and in results.json;
 # mmh-stack --json ends with the census fields; an unknown --set key is refused by name.
+# mmh-bench-compare pairs that run with itself (no change) and refuses runs without common flights.
 set -euo pipefail
 build=$1
 out=$(mktemp -d)
@@ -29,6 +30,21 @@ assert sum(r["stop_causes"].values()) == len(r["stop_events"])
 for s in r["stop_events"]:
     assert {"time_s", "trigger", "cause", "detail", "failed_modes"} <= set(s), s
 PY
+
+compare="$build/bin/mmh-bench-compare"
+"$compare" "$out/bench" "$out/bench/results.json" --out "$out/compare.md" || fail "mmh-bench-compare failed"
+cat "$out/compare.md"
+grep -qE "^\| ego-forest \| 0\.20 \| mmh \| 1 \| 1 → 1 \| 0 → 0 \| ([0-9]+) → \1 \| .* \| \+0\.000 \| \[\+0\.000, \+0\.000\] \| 0 / 0 \|" "$out/compare.md" \
+  || fail "a run compared with itself does not show an unchanged row"
+echo '[]' >"$out/empty.json"
+if "$compare" "$out/bench" "$out/empty.json" 2>"$out/compare.err"; then
+  fail "mmh-bench-compare accepted runs without a common flight"
+fi
+grep -q "no flight in common" "$out/compare.err" || fail "unclear error: $(cat "$out/compare.err")"
+if "$compare" "$out/bench" "$out/missing" 2>"$out/compare.err"; then
+  fail "mmh-bench-compare accepted a missing run"
+fi
+grep -q "cannot read" "$out/compare.err" || fail "unclear error: $(cat "$out/compare.err")"
 
 if "$build/bin/mmh-bench" --methods mmh --densities 0 --maps 1 --trials 1 --no-plots \
      --set vehicle.no_such_key=1 --out "$out/bad" 2>"$out/bad.err"; then
