@@ -1,6 +1,7 @@
 #include "bench_report.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iomanip>
 #include <map>
@@ -86,6 +87,45 @@ std::string stopCensusMarkdown(const std::vector<FlightResult>& results) {
          << fmt(double(stops) / flights) << " | " << topCounts(causes, 4) << " | "
          << topCounts(failed_modes, 4) << " | " << max_calls << " | " << fmt(np.max, 1) << " | "
          << fmt(np.avg, 1) << " |\n";
+    }
+  }
+  return md.str();
+}
+
+std::string timeByModeMarkdown(const std::vector<FlightResult>& results) {
+  const Groups g = groupsOf(results);
+  std::ostringstream md;
+  md << "## Where the time goes\n\n"
+        "Successful flights, mean per flight: the time flown on each mode's trajectory and, in "
+        "brackets, the time lost on it against flying at v_max (the integral of 1 - speed / "
+        "v_max). The lost times add up to about the flight time minus distance / v_max; they "
+        "include the start's acceleration and the braking at the goal (about v_max / a_max "
+        "together), which fall on the first and the last mode. Per flight in results.json "
+        "(`time_by_mode_s`, `time_lost_by_mode_s`).\n\n"
+        "| density | method | flights | FPM (s) | SOM (s) | EAM (s) | stop (s) | before the "
+        "first plan (s) | lost in all (s) |\n|---|---|---|---|---|---|---|---|---|\n";
+  // Column order: FPM, SOM, EAM, stop, none.
+  const int order[kModeSlots] = {1, 2, 3, 4, 0};
+  for (double d : g.densities) {
+    for (const std::string& m : g.methods) {
+      std::array<double, kModeSlots> time{}, lost{};
+      int flights = 0;
+      for (const FlightResult& r : results) {
+        if (r.spec.density != d || r.spec.method != m || !r.success) continue;
+        ++flights;
+        for (int i = 0; i < kModeSlots; ++i) {
+          time[i] += r.time_by_mode.time_s[i];
+          lost[i] += r.time_by_mode.lost_s[i];
+        }
+      }
+      if (flights == 0) continue;
+      double lost_all = 0;
+      md << "| " << densityLabel(d) << " | " << m << " | " << flights;
+      for (int i : order) {
+        md << " | " << fmt(time[i] / flights, 2) << " (" << fmt(lost[i] / flights, 2) << ")";
+        lost_all += lost[i] / flights;
+      }
+      md << " | " << fmt(lost_all, 2) << " |\n";
     }
   }
   return md.str();
@@ -233,6 +273,7 @@ std::string summaryMarkdown(const std::vector<FlightResult>& results, const std:
   md << "\nPaper figures from docs/benchmark.md (paper's machine: i9-13980HX; ours: 2 shared "
         "cores).\n";
   md << "\n" << stopCensusMarkdown(results);
+  md << "\n" << timeByModeMarkdown(results);
   return md.str();
 }
 

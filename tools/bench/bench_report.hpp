@@ -28,6 +28,10 @@ PaperFigures paperFigures(double density);
 // a commit and the longest time without progress toward the goal. Part of summaryMarkdown.
 std::string stopCensusMarkdown(const std::vector<FlightResult>& results);
 
+// Where the time goes per density and method (successful flights): the mean time flown on each
+// mode and the time lost on it against v_max. Part of summaryMarkdown.
+std::string timeByModeMarkdown(const std::vector<FlightResult>& results);
+
 std::string summaryMarkdown(const std::vector<FlightResult>& results, const std::string& command,
                             double wall_time_s);
 

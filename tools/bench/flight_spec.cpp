@@ -43,6 +43,23 @@ StopRecord stopFromJson(const nlohmann::json& j) {
   return s;
 }
 
+// The mode slots of TimeByMode by name, as results.json writes them.
+constexpr const char* kModeSlotNames[kModeSlots] = {"none", "fpm", "som", "eam", "stop"};
+
+nlohmann::json modeSlotsJson(const std::array<double, kModeSlots>& values) {
+  nlohmann::json j = nlohmann::json::object();
+  for (int i = 0; i < kModeSlots; ++i) j[kModeSlotNames[i]] = number(values[i]);
+  return j;
+}
+
+// Records written before the field existed have none: zeros.
+std::array<double, kModeSlots> modeSlotsFromJson(const nlohmann::json& j, const char* key) {
+  std::array<double, kModeSlots> values{};
+  if (!j.contains(key)) return values;
+  for (int i = 0; i < kModeSlots; ++i) values[i] = number(j.at(key).at(kModeSlotNames[i]));
+  return values;
+}
+
 }  // namespace
 
 std::string FlightSpec::id() const {
@@ -93,6 +110,8 @@ nlohmann::json toJson(const FlightResult& r) {
       {"max_calls_without_commit", r.census.max_calls_without_commit},
       {"longest_no_progress_s", number(r.census.longest_no_progress_s)},
       {"longest_no_progress_from_s", number(r.census.longest_no_progress_from_s)},
+      {"time_by_mode_s", modeSlotsJson(r.time_by_mode.time_s)},
+      {"time_lost_by_mode_s", modeSlotsJson(r.time_by_mode.lost_s)},
   };
 }
 
@@ -137,6 +156,8 @@ FlightResult fromJson(const nlohmann::json& j) {
   r.census.max_calls_without_commit = j.at("max_calls_without_commit").get<int>();
   r.census.longest_no_progress_s = number(j.at("longest_no_progress_s"));
   r.census.longest_no_progress_from_s = number(j.at("longest_no_progress_from_s"));
+  r.time_by_mode.time_s = modeSlotsFromJson(j, "time_by_mode_s");
+  r.time_by_mode.lost_s = modeSlotsFromJson(j, "time_lost_by_mode_s");
   return r;
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "stop_census.hpp"
+#include "time_by_mode.hpp"
 
 namespace mmh::bench {
 
@@ -35,7 +36,8 @@ struct FlightResult {
   double time_bound_s = 0, time_ratio = 0;
   double min_clearance_m = 0;
   int stops = 0;
-  FlightCensus census;  // the stops with their causes, and the stalls
+  FlightCensus census;      // the stops with their causes, and the stalls
+  TimeByMode time_by_mode;  // time flown and lost against v_max per mode
   double wall_time_s = 0;
   std::string error;   // non-empty when the flight could not run
   std::string reason;  // non-empty when it flew and failed: why (FlightRecord::failure_reason)

@@ -6,6 +6,7 @@
 #include "mmh/common/forest.hpp"
 #include "mmh/sim/ego_forest.hpp"
 #include "stack.hpp"
+#include "time_by_mode.hpp"
 
 namespace mmh::bench {
 namespace {
@@ -65,6 +66,7 @@ FlightResult runFlight(const FlightSpec& spec, const Config& config, double time
     result.min_clearance_m = m.min_clearance_m;
     result.stops = rec.stops;
     result.census = rec.census;
+    result.time_by_mode = timeByMode(rec.path, config.getDouble("vehicle.max_vel_mps"));
     result.wall_time_s = rec.wall_time_s;
     if (!paths_dir.empty()) {
       nlohmann::json j;

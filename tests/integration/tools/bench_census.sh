@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # mmh-bench with a tiny protocol in the EGO-Planner forest (1 map x 1 trial, one density, LiDAR,
 # one --set): the census of stops and stalls is in summary.md, on stdout and in results.json;
+# where the time goes per mode is in summary.md and results.json;
 # mmh-stack --json ends with the census fields; an unknown --set key is refused by name.
 # mmh-bench-compare pairs that run with itself (no change) and refuses runs without common flights.
 set -euo pipefail
@@ -29,7 +30,16 @@ for key in ("stop_causes", "stop_events", "max_calls_without_commit", "longest_n
 assert sum(r["stop_causes"].values()) == len(r["stop_events"])
 for s in r["stop_events"]:
     assert {"time_s", "trigger", "cause", "detail", "failed_modes"} <= set(s), s
+# Where the time goes: every mode slot, adding up to the flight's time.
+for key in ("time_by_mode_s", "time_lost_by_mode_s"):
+    assert set(r[key]) == {"none", "fpm", "som", "eam", "stop"}, r[key]
+total = sum(r["time_by_mode_s"].values())
+assert abs(total - r["flight_time_s"]) < 0.2, (total, r["flight_time_s"])
+assert 0 <= sum(r["time_lost_by_mode_s"].values()) <= total
 PY
+grep -qE "^\| 0\.20 \| mmh \| 1 \| [0-9.]+ \([0-9.]+\) \|" "$out/bench/summary.md" \
+  || fail "no row in summary.md's 'Where the time goes'"
+
 
 compare="$build/bin/mmh-bench-compare"
 "$compare" "$out/bench" "$out/bench/results.json" --out "$out/compare.md" || fail "mmh-bench-compare failed"
