@@ -6,8 +6,11 @@
 #include <limits>
 #include <map>
 #include <random>
+#include <set>
 #include <sstream>
 #include <tuple>
+
+#include "bench_report.hpp"
 
 namespace mmh::bench {
 namespace {
@@ -21,11 +24,9 @@ std::string pairKey(const FlightSpec& s) {
   return k.str();
 }
 
+// The mean over finite values, NaN for none (the benchmark tables' own statistic).
 double mean(const std::vector<double>& v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  double sum = 0;
-  for (double x : v) sum += x;
-  return sum / static_cast<double>(v.size());
+  return statOf(v).avg;
 }
 
 // The relative change of time above which a flight counts as faster or slower.
@@ -67,15 +68,14 @@ Comparison comparePaired(const std::vector<FlightResult>& base,
     std::vector<double> base_ratio, cand_ratio, change, base_energy, cand_energy, base_it, cand_it;
   };
   std::map<GroupKey, Samples> groups;
-  std::map<std::string, bool> matched;
+  std::set<std::string> matched;
   for (const FlightResult& b : base) {
     const std::string key = pairKey(b.spec);
     const auto it = cand_by_key.find(key);
-    if (it == cand_by_key.end() || matched[key]) {
+    if (it == cand_by_key.end() || !matched.insert(key).second) {
       ++out.only_base;
       continue;
     }
-    matched[key] = true;
     const FlightResult& c = *it->second;
     Samples& s = groups[{b.spec.world, b.spec.density, b.spec.method}];
     PairedGroup& g = s.group;

@@ -50,6 +50,15 @@ Groups groupsOf(const std::vector<FlightResult>& results) {
   return g;
 }
 
+// The flights of one density and method, in their order.
+std::vector<const FlightResult*> flightsOf(const std::vector<FlightResult>& results, double density,
+                                           const std::string& method) {
+  std::vector<const FlightResult*> out;
+  for (const FlightResult& r : results)
+    if (r.spec.density == density && r.spec.method == method) out.push_back(&r);
+  return out;
+}
+
 }  // namespace
 
 std::string stopCensusMarkdown(const std::vector<FlightResult>& results) {
@@ -110,12 +119,12 @@ std::string timeByModeMarkdown(const std::vector<FlightResult>& results) {
     for (const std::string& m : g.methods) {
       std::array<double, kModeSlots> time{}, lost{};
       int flights = 0;
-      for (const FlightResult& r : results) {
-        if (r.spec.density != d || r.spec.method != m || !r.success) continue;
+      for (const FlightResult* r : flightsOf(results, d, m)) {
+        if (!r->success) continue;
         ++flights;
         for (int i = 0; i < kModeSlots; ++i) {
-          time[i] += r.time_by_mode.time_s[i];
-          lost[i] += r.time_by_mode.lost_s[i];
+          time[i] += r->time_by_mode.time_s[i];
+          lost[i] += r->time_by_mode.lost_s[i];
         }
       }
       if (flights == 0) continue;
@@ -161,19 +170,9 @@ PaperFigures paperFigures(double d) {
 
 std::string summaryMarkdown(const std::vector<FlightResult>& results, const std::string& command,
                             double wall_time_s) {
-  std::set<double> densities;
-  std::vector<std::string> methods;
-  for (const FlightResult& r : results) {
-    densities.insert(r.spec.density);
-    if (std::find(methods.begin(), methods.end(), r.spec.method) == methods.end())
-      methods.push_back(r.spec.method);
-  }
-  auto select = [&](double d, const std::string& m) {
-    std::vector<const FlightResult*> out;
-    for (const FlightResult& r : results)
-      if (r.spec.density == d && r.spec.method == m) out.push_back(&r);
-    return out;
-  };
+  const Groups groups = groupsOf(results);
+  const std::set<double>& densities = groups.densities;
+  const std::vector<std::string>& methods = groups.methods;
   // Metrics of successful flights only, as the paper reports them.
   auto collect = [](const std::vector<const FlightResult*>& rs, auto field) {
     std::vector<double> v;
@@ -193,7 +192,7 @@ std::string summaryMarkdown(const std::vector<FlightResult>& results, const std:
         "|---|---|---|---|---|---|---|\n";
   for (double d : densities) {
     for (const std::string& m : methods) {
-      auto rs = select(d, m);
+      auto rs = flightsOf(results, d, m);
       if (rs.empty()) continue;
       int ok = 0, col = 0, to = 0, stops = 0;
       for (auto* r : rs) {
@@ -214,7 +213,7 @@ std::string summaryMarkdown(const std::vector<FlightResult>& results, const std:
         "---|---|---|\n";
   for (double d : densities) {
     for (const std::string& m : methods) {
-      auto rs = select(d, m);
+      auto rs = flightsOf(results, d, m);
       if (rs.empty()) continue;
       const Stat t = statOf(collect(rs, [](const FlightResult& r) { return r.flight_time_s; }));
       const Stat l = statOf(collect(rs, [](const FlightResult& r) { return r.distance_m; }));
@@ -239,7 +238,7 @@ std::string summaryMarkdown(const std::vector<FlightResult>& results, const std:
         "|---|---|---|---|---|---|---|---|---|\n";
   for (double d : densities) {
     for (const std::string& m : methods) {
-      auto rs = select(d, m);
+      auto rs = flightsOf(results, d, m);
       if (rs.empty()) continue;
       const Stat it =
           statOf(collect(rs, [](const FlightResult& r) { return double(r.iterations); }));
