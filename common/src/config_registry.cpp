@@ -243,7 +243,7 @@ std::vector<KeySpec> buildKeys() {
       flag("eam.guide_warm_start", "true", "Start from the A* guide path on colliding stretches"),
       real("eam.merge_gap_s", 0.0, 100.0, "2.0",
            "Colliding stretches closer than this share one A* search"),
-      integer("eam.max_rebound_rounds", 1, 50, "6",
+      integer("eam.max_rebound_rounds", 1, 50, "10",
               "Optimisations with new {p, v} pairs (collision checks between)"),
       integer("eam.max_refine_rounds", 0, 20, "5",
               "Time re-allocations while v_max / a_max are broken"),
@@ -270,6 +270,9 @@ std::vector<KeySpec> buildKeys() {
            "A start inside the inflated margin may cross it this far"),
       real("eam.start_escape_clearance_m", 0.0, 2.0, "0.28",
            "... only outwards, never nearer to occupied cells than the start or this"),
+      optional(real("eam.start_forced_deviation_m", 0.0, 0.2, "0.04",
+                    "Margin cells an answer meets while its start state holds it within this of "
+                    "its way (1/2 a_max t^2) keep only the escape clearance")),
       optional(
           flag("eam.publish_debug", "false",
                "Publish the A* guides and {p, v} pairs of each answer on PLAN_DEBUG (viewer)")),

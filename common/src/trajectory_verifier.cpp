@@ -117,7 +117,10 @@ bool checkPerPiece(const Trajectory& traj, const VerifierOptions& o, VerifyResul
                             "stays in the inflated margin it starts in too far from the start", i,
                             t0 + tl),
                      false;
-            if (!escaping)
+            const bool forced =
+                t0 + tl <= o.forced_until_s &&
+                keepsEscapeDistance(*grid, p, o.escape_min_distance_m, o.escape_depth_tol_m);
+            if (!escaping && !forced)
               return failAt(r, VerifyCheck::kInflated, "enters the inflated obstacles", i, t0 + tl),
                      false;
             if (!keepsEscapeDistance(*grid, p, o.escape_min_distance_m, o.escape_depth_tol_m))

@@ -115,7 +115,8 @@ bool awayFromObstacle(const VoxelGrid& grid, const Eigen::Vector3d& x, const Eig
 
 std::vector<CollisionStretch> findCollisionStretches(const UniformBspline& spline,
                                                      const VoxelGrid& grid, double escape_radius_m,
-                                                     double step_m, double escape_min_distance_m) {
+                                                     double step_m, double escape_min_distance_m,
+                                                     double forced_until_s) {
   std::vector<CollisionStretch> out;
   const Eigen::Matrix3Xd& q = spline.controlPoints();
   const double dt = spline.knotSpan();
@@ -160,6 +161,10 @@ std::vector<CollisionStretch> findCollisionStretches(const UniformBspline& splin
         } else {
           escaping = false;
         }
+      }
+      if (blocked && sample.t <= forced_until_s && grid.atLinear(idx) != Occupancy::kOccupied &&
+          keepsEscapeDistance(grid, sample.point, escape_min_distance_m)) {
+        blocked = false;  // the start state fixes this stretch of the way
       }
       if (blocked) {
         if (!in_run) {

@@ -1,5 +1,7 @@
 #include "mmh/eam/eam_params.hpp"
 
+#include <cmath>
+
 #include "mmh/common/config_constraints.hpp"
 #include "mmh/common/geofence.hpp"
 #include "mmh/common/vehicle_limits.hpp"
@@ -40,6 +42,8 @@ EamParams loadEamParams(const Config& config) {
   p.astar_slab_margin_m = config.getDouble("eam.astar_slab_margin_m");
   p.start_escape_radius_m = config.getDouble("eam.start_escape_radius_m");
   p.start_escape_clearance_m = config.getDouble("eam.start_escape_clearance_m");
+  p.start_forced_s =
+      std::sqrt(2.0 * config.getDouble("eam.start_forced_deviation_m") / p.max_acc_mps2);
   checkConfigConstraints(config);
   return p;
 }

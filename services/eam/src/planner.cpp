@@ -330,7 +330,7 @@ Planner::RoundsOutcome Planner::runRounds(const VoxelGrid& grid, const PlanReque
   for (;;) {
     const std::vector<CollisionStretch> stretches = timed(&r.stats.check_us, [&] {
       return findCollisionStretches(at.spline, grid, P.start_escape_radius_m, at.check_step,
-                                    at.escape_min_distance);
+                                    at.escape_min_distance, P.start_forced_s);
     });
     bool feasibility_round = false;
     if (stretches.empty()) {
@@ -490,7 +490,7 @@ std::optional<Planner::RoundsOutcome> Planner::reboundRound(
     // than in another round.
     const std::vector<CollisionStretch> grazes = timed(&r.stats.check_us, [&] {
       return findCollisionStretches(at.spline, grid, P.start_escape_radius_m, at.check_step,
-                                    at.escape_min_distance);
+                                    at.escape_min_distance, P.start_forced_s);
     });
     for (const CollisionStretch& g : grazes) {
       for (const GuideSpan& span : round_guides) {
@@ -578,11 +578,11 @@ PlanResult Planner::plan(const VoxelGrid& grid, const PlanRequest& req) {
     // behind the start), the rounds bend too few, too widely spaced control points around the
     // obstacles and every attempt still cuts them. Guess along the A* path instead, with as many
     // control points as its length needs.
-    const bool blocked =
-        !timed(&r.stats.check_us, [&] {
-           return findCollisionStretches(initial, grid, P.start_escape_radius_m,
-                                         kCheckStep * grid.resolution(), escape_min_distance);
-         }).empty();
+    const bool blocked = !timed(&r.stats.check_us, [&] {
+                            return findCollisionStretches(initial, grid, P.start_escape_radius_m,
+                                                          kCheckStep * grid.resolution(),
+                                                          escape_min_distance, P.start_forced_s);
+                          }).empty();
     if (blocked) {
       GuideStats gs;
       const double z_lo = std::min(req.start.position.z(), req.target.z());

@@ -38,6 +38,7 @@ Verification verifyTrajectory(const Trajectory& traj, const VoxelGrid& grid,
   o.escape_min_distance_m =
       escapeMinDistance(grid, start.position, params.start_escape_clearance_m);
   o.escape_from_first_sample = true;
+  o.forced_until_s = params.start_forced_s;
   o.min_time_step_s = 1e-5;
   o.cubic_fast_path = true;
   const VerifyResult v = mmh::verifyTrajectory(traj, o);

@@ -136,4 +136,22 @@ TEST_F(Verifier, CollisionsAndTheEscape) {
   EXPECT_EQ(mmh::verifyTrajectory(line(), o).failed, VerifyCheck::kEscapeDeeper);
 }
 
+TEST_F(Verifier, MarginCellsTheStartStateFixesKeepTheEscapeDistance) {
+  // Occupied at (0.35, 1.25): the path (y = 1.05) crosses margin cells for x in [0.2, 0.5]
+  // (t in about [0.48, 0.8] s), never nearer to that cell's centre than 0.2 m.
+  mmh::VoxelGrid beside = grid_;
+  beside.setInflationRadius(0.25);
+  beside.set(Vector3i(13, 12, 10), mmh::Occupancy::kOccupied);
+  VerifierOptions o = allChecks(&beside);
+  EXPECT_EQ(mmh::verifyTrajectory(line(), o).failed, VerifyCheck::kInflated);
+  o.escape_min_distance_m = 0.2;
+  o.forced_until_s = 1.0;
+  EXPECT_TRUE(mmh::verifyTrajectory(line(), o).ok) << mmh::verifyTrajectory(line(), o).why;
+  o.forced_until_s = 0.6;  // lets go in the middle of the crossing
+  EXPECT_EQ(mmh::verifyTrajectory(line(), o).failed, VerifyCheck::kInflated);
+  o.forced_until_s = 1.0;
+  o.escape_min_distance_m = 0.25;  // the crossing comes nearer than that
+  EXPECT_EQ(mmh::verifyTrajectory(line(), o).failed, VerifyCheck::kInflated);
+}
+
 }  // namespace

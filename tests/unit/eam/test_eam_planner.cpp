@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "eam_test_grids.hpp"
+#include "mmh/common/collision_check.hpp"
 #include "mmh/common/config.hpp"
 #include "mmh/eam/initial_guess.hpp"
 #include "mmh/eam/planner.hpp"
@@ -265,6 +266,46 @@ TEST(EamPlanner, StartInTheInflatedMarginMayLeaveIt) {
     }
   }
   EXPECT_TRUE(left);
+}
+
+TEST(EamPlanner, AMarginCellTheStartStateCannotAvoidIsCrossedAtTheEscapeDistance) {
+  // One column of occupied cells (centre x = y = 0.35). The vehicle flies at 2.8 m/s along
+  // (1, -1) / sqrt(2) on the line x + y = 0.41 (0.29 m from the column), which crosses one margin
+  // cell (centre 0.283 m from the column) 0.1 s after the start: no plan can leave that line by
+  // the 6 cm that would avoid the cell in 0.1 s. The answer may cross it, keeping the escape
+  // distance from the column, but nowhere else may it touch the margin; with the rule off, no
+  // answer.
+  mmh::VoxelGrid g = eam_test::freeGrid();
+  for (int z = 0; z < g.size().z(); ++z)
+    g.set(Eigen::Vector3i(23, 43, z), mmh::Occupancy::kOccupied);
+  const Vector3d column(0.35, 0.35, 1.2);
+  const Vector3d dir = Vector3d(1.0, -1.0, 0.0).normalized();
+  const Vector3d crossing(0.555, 0.555, 1.2);
+  ASSERT_TRUE(g.isBlockedPoint(crossing));
+  auto p = params();
+  ASSERT_NEAR(p.start_forced_s, 0.2, 1e-9);  // 1/2 a_max t^2 = 4 cm
+  PlanRequest req;
+  req.start.position = crossing - 0.28 * dir;
+  req.start.velocity = 2.8 * dir;
+  req.target = req.start.position + 6.0 * dir;
+  ASSERT_FALSE(g.isBlockedPoint(req.start.position));
+  const PlanResult r = mmh::eam::Planner(p).plan(g, req);
+  ASSERT_TRUE(r.ok) << toString(r.reason) << ": " << r.detail;
+  const mmh::Trajectory& t = r.trajectory;
+  EXPECT_EQ(eam_test::firstBlockedTime(g, t, /*occupied_only=*/true), -1.0);
+  bool crossed = false;
+  for (double s = 0.0; s <= t.duration(); s += 0.001) {
+    const Vector3d x = t.position(s);
+    if (!g.isBlockedPoint(x)) continue;
+    crossed = true;
+    ASSERT_LE(s, p.start_forced_s) << "in the margin after the start state lets go";
+    ASSERT_GE(std::hypot(x.x() - column.x(), x.y() - column.y()),
+              p.start_escape_clearance_m - mmh::kEscapeDepthTolerance)
+        << "at t=" << s;
+  }
+  EXPECT_TRUE(crossed);
+  p.start_forced_s = 0.0;
+  EXPECT_FALSE(mmh::eam::Planner(p).plan(g, req).ok);
 }
 
 TEST(EamPlanner, EmptyReferenceUsesAStraightGuess) {

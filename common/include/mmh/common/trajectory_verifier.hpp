@@ -78,6 +78,9 @@ struct VerifierOptions {
   // kPerPiece: the escape lasts from the first sample while samples are blocked (true), or only
   // when the start position itself is blocked (false; SOM).
   bool escape_from_first_sample = true;
+  // kPerPiece: samples up to this time after the start may lie in the inflated margin when they
+  // keep escape_min_distance_m (the way the start state fixes, see EamParams::start_forced_s).
+  double forced_until_s = 0.0;
   // --- sampling ---
   enum class Sampling { kPerPiece, kTimeSteps };
   Sampling sampling = Sampling::kPerPiece;

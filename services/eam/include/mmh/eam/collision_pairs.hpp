@@ -33,11 +33,13 @@ struct CollisionStretch {
 // finer). A start inside the inflated margin (not in an occupied cell) may leave it: leading
 // blocked samples within escape_radius_m of the start that keep escape_min_distance_m from the
 // occupied cells (mmh::keepsEscapeDistance) are not collisions (the same rule as the
-// verification).
+// verification). Nor are margin samples (not occupied) up to forced_until_s after the start that
+// keep escape_min_distance_m: there the start state fixes the way (EamParams::start_forced_s).
 std::vector<CollisionStretch> findCollisionStretches(const UniformBspline& spline,
                                                      const VoxelGrid& grid, double escape_radius_m,
                                                      double step_m,
-                                                     double escape_min_distance_m = 0.0);
+                                                     double escape_min_distance_m = 0.0,
+                                                     double forced_until_s = 0.0);
 
 // Adds anchor pairs for the free control points [first_free, last_free] that shape the
 // stretch: for each, a blocked probe point x (the control point itself when it is blocked, else

@@ -47,7 +47,7 @@ struct EamParams {
   // Colliding stretches closer than this (in time) share one A* search.
   double merge_gap_s = 2.0;
   // Collision-check / pair-generation rounds (the first included) and time re-allocations.
-  int max_rebound_rounds = 6;
+  int max_rebound_rounds = 10;
   int max_refine_rounds = 5;
   // Restarts when the rounds run out with collisions: from the guess again, with one A* guide
   // around all the collisions at once that avoids slots.
@@ -79,6 +79,10 @@ struct EamParams {
   // ... but only outwards: on the way out no point nearer to the occupied cells than the start,
   // or than this (whichever is less; see mmh::escapeMinDistance).
   double start_escape_clearance_m = 0.28;
+  // Within this time of its start an answer cannot leave the way its start state carries it by
+  // more than eam.start_forced_deviation_m (1/2 a_max t^2): margin cells met there, which no
+  // plan could avoid, are held to the escape distance above instead of refused (0: off).
+  double start_forced_s = 0.2;
 };
 
 // Throws ConfigError naming the key when a value is missing or out of range.
