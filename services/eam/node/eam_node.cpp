@@ -5,6 +5,23 @@
 
 namespace mmh {
 
+eam::PlanRequest eamRequestOf(const plan_request_t& msg) {
+  eam::PlanRequest request;
+  request.start = startStateOf(msg);
+  request.target = toVec3(msg.target);
+  request.max_speed_mps = msg.max_speed_mps;
+  // The reference is the committed trajectory; only its part from start_utime on is the guess.
+  if (msg.reference.num_pieces > 0) {
+    const Trajectory committed = fromMsg(msg.reference);
+    const double offset_s = 1e-6 * static_cast<double>(msg.start_utime - msg.reference.start_utime);
+    if (offset_s <= 0.0)
+      request.reference = committed;
+    else if (offset_s < committed.duration() - 1e-6)
+      request.reference = committed.tail(offset_s);
+  }
+  return request;
+}
+
 EamNode::EamNode(ServiceContext& ctx, const Config& config)
     : ctx_(ctx),
       map_(config.getDouble("map.inflation_m")),
@@ -48,21 +65,7 @@ void EamNode::onPlanRequest(const plan_request_t& req) {
     publishFailure(req, plan_result_t::REASON_NO_MAP, "no LOCAL_MAP received yet", started);
     return;
   }
-  eam::PlanRequest request;
-  request.start = startStateOf(req);
-  request.target = toVec3(req.target);
-  request.max_speed_mps = req.max_speed_mps;
-  // The reference is the committed trajectory; only its part from start_utime on is the guess.
-  if (req.reference.num_pieces > 0) {
-    const Trajectory committed = fromMsg(req.reference);
-    const double offset_s = 1e-6 * static_cast<double>(req.start_utime - req.reference.start_utime);
-    if (offset_s <= 0.0)
-      request.reference = committed;
-    else if (offset_s < committed.duration() - 1e-6)
-      request.reference = committed.tail(offset_s);
-  }
-
-  const eam::PlanResult result = planner_.plan(map_.grid(), request);
+  const eam::PlanResult result = planner_.plan(map_.grid(), eamRequestOf(req));
   plan_result_t out{};
   out.request_id = req.request_id;
   out.mode = plan_request_t::MODE_EAM;

@@ -13,6 +13,10 @@
 
 namespace mmh {
 
+// The planner's request for a PLAN_REQUEST_EAM: start state, target, speed limit, and as the
+// initial guess the part of the committed trajectory (reference) from the request's start time.
+eam::PlanRequest eamRequestOf(const plan_request_t& msg);
+
 class EamNode {
  public:
   EamNode(ServiceContext& ctx, const Config& config);

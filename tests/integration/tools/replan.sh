@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# mmh-replan: the EAM and SOM requests of a lock-step flight recorded by mmh-stack --log, planned
+# again by the same build and configuration, fail exactly where they failed in flight (nothing
+# fixed, nothing broken, one --list line per failure); another configuration is accepted with
+# --set; usage errors exit with 2 and say why.
+set -euo pipefail
+build=$1
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+replan=$build/bin/mmh-replan
+fail() { echo "FAIL: $*"; exit 1; }
+
+log=$out/flight.lcm
+# A 0.2 obs/m² forest whose flight asks EAM 12 times, 4 of them without an answer.
+"$build/bin/mmh-stack" --density 0.2 --seed 1300 --noise-seed 130002 --log-level error --json \
+  --log "$log" > "$out/flight.json" || fail "flight failed"
+
+for mode in eam som; do
+  "$replan" --mode "$mode" "$log" > "$out/$mode.txt" || fail "mmh-replan --mode $mode exit $?"
+  cat "$out/$mode.txt"
+  requests=$(sed -nE 's/^requests ([0-9]+) .*/\1/p' "$out/$mode.txt")
+  [ "${requests:-0}" -ge 1 ] || fail "$mode: no request found in the log"
+  line=$(grep -E '^failed then ' "$out/$mode.txt") || fail "$mode: no summary line"
+  then_=$(sed -nE 's/^failed then ([0-9]+), now ([0-9]+): ([0-9]+) fixed, ([0-9]+) broken/\1 \2 \3 \4/p' \
+    "$out/$mode.txt")
+  read -r before now fixed broken <<< "$then_"
+  [ "$before" = "$now" ] && [ "$fixed" = 0 ] && [ "$broken" = 0 ] ||
+    fail "$mode: the same build planned differently: $line"
+  listed=$("$replan" --mode "$mode" --list "$log" | grep -c "^$log " || true)
+  [ "$listed" = "$before" ] || fail "$mode: --list shows $listed requests, $before failed"
+done
+before=$(sed -nE 's/^failed then ([0-9]+),.*/\1/p' "$out/eam.txt")
+[ "$before" -ge 1 ] || fail "the flight had no EAM failure to replan"
+
+# Another configuration of the mode: planned and summarised (whatever it changes).
+"$replan" --set eam.max_rebound_rounds=2 "$log" > "$out/rounds.txt" || fail "--set exit $?"
+grep -qE '^failed then [0-9]+, now [0-9]+' "$out/rounds.txt" || fail "--set gave no summary"
+
+# Usage errors: exit code 2 with a message.
+check_usage() {
+  local status=0
+  "$replan" "$@" > /dev/null 2> "$out/err.txt" || status=$?
+  [ $status -eq 2 ] || fail "'$*' gave exit code $status, not 2"
+  [ -s "$out/err.txt" ] || fail "'$*' said nothing"
+}
+check_usage
+check_usage "$out/missing.lcm"
+check_usage --mode fpm "$log"
+check_usage --set eam.no_such_key=1 "$log"
+echo "mmh-replan: OK"

@@ -1,0 +1,69 @@
+// mmh-replan's summary: failure kinds without their numbers, and the counts of fixed and broken
+// requests (the planning itself is covered by the integration test on a recorded flight).
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "replan.hpp"
+
+namespace {
+
+mmh::ReplanOutcome outcome(bool logged_ok, bool ok, const std::string& detail = "",
+                           double ms = 1.0) {
+  mmh::ReplanOutcome o;
+  o.logged_answer = true;
+  o.logged_ok = logged_ok;
+  o.logged_detail = logged_ok ? "" : "then";
+  o.ok = ok;
+  o.detail = detail;
+  o.compute_ms = ms;
+  return o;
+}
+
+TEST(Replan, FailureKindTakesOutNumbersAndStepTimes) {
+  EXPECT_EQ(mmh::failureKind("optimizer: still in collision after 12 rounds"),
+            "optimizer: still in collision after # rounds");
+  EXPECT_EQ(mmh::failureKind("verification: max acceleration 5.416 m/s^2 exceeds 2 [A* 0.17 ms, "
+                             "corridor 0.28 ms (5 polytopes)]"),
+            "verification: max acceleration # m/s^# exceeds #");
+  EXPECT_EQ(mmh::failureKind("enters the inflated obstacles at t=-1.5e-3 s"),
+            "enters the inflated obstacles at t=-# s");
+  EXPECT_EQ(mmh::failureKind("no map"), "no map");
+  EXPECT_EQ(mmh::failureKind(""), "");
+}
+
+TEST(Replan, SummaryCountsFixedBrokenAndKinds) {
+  std::vector<mmh::ReplanOutcome> all = {
+      outcome(true, true, "", 1.0),
+      outcome(false, true, "", 3.0),                                               // fixed
+      outcome(true, false, "optimizer: still in collision after 20 rounds", 2.0),  // broken
+      outcome(false, false, "optimizer: still in collision after 12 rounds", 6.0),
+  };
+  mmh::ReplanOutcome unanswered = outcome(true, false, "no map", 100.0);
+  unanswered.logged_answer = false;
+  all.push_back(unanswered);
+  const mmh::ReplanSummary s = mmh::summarize(all);
+  EXPECT_EQ(s.requests, 4);
+  EXPECT_EQ(s.unanswered, 1);
+  EXPECT_EQ(s.failed_before, 2);
+  EXPECT_EQ(s.failed_now, 2);
+  EXPECT_EQ(s.fixed, 1);
+  EXPECT_EQ(s.broken, 1);
+  EXPECT_DOUBLE_EQ(s.mean_compute_ms, 3.0);
+  EXPECT_DOUBLE_EQ(s.max_compute_ms, 6.0);
+  ASSERT_EQ(s.reasons_now.size(), 1u);
+  EXPECT_EQ(s.reasons_now.at("optimizer: still in collision after # rounds"), 2);
+  std::ostringstream text;
+  mmh::printReplanSummary(s, text);
+  EXPECT_NE(text.str().find("failed then 2, now 2: 1 fixed, 1 broken"), std::string::npos)
+      << text.str();
+}
+
+TEST(Replan, AnEmptyLogSummarisesToZeros) {
+  const mmh::ReplanSummary s = mmh::summarize({});
+  EXPECT_EQ(s.requests, 0);
+  EXPECT_EQ(s.failed_now, 0);
+  EXPECT_DOUBLE_EQ(s.mean_compute_ms, 0.0);
+}
+
+}  // namespace

@@ -1,0 +1,75 @@
+// mmh-replan: gives every planning request of one mode in recorded flights to this build's
+// planner, with the map the mode had then, and compares the answers with the recorded ones.
+#include <cstdio>
+#include <iostream>
+
+#include "config_overrides.hpp"
+#include "mmh/common/cli.hpp"
+#include "mmh/common/node_options.hpp"
+#include "replan.hpp"
+
+int main(int argc, char** argv) {
+  std::vector<std::string> sets;
+  try {
+    sets = mmh::takeSetOptions(&argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "mmh-replan: " << e.what() << "\n";
+    return 2;
+  }
+  mmh::NodeOptions node;
+  node.log_level = "error";
+  mmh::ReplanOptions options;
+  bool list = false;
+  std::vector<std::string> logs;
+  std::string set_help;
+  mmh::ArgParser parser(
+      "mmh-replan",
+      "Plans every PLAN_REQUEST_EAM (or _SOM) of recorded flights (lcm-logger or mmh-stack --log) "
+      "again with this build's planner and the map the mode had rebuilt from LOCAL_MAP then, and "
+      "compares with the recorded PLAN_RESULT: which failures are answered now, which answers "
+      "fail now, and why.");
+  parser.addString("--mode", &options.mode, "eam or som (default: eam)");
+  parser.addString("--config", &node.config_path,
+                   "configuration (default: $MMH_CONFIG or deploy/config/default.yaml)");
+  parser.addString("--set", &set_help,
+                   "key=value: override one configuration key (repeatable; the key must exist)");
+  parser.addString("--prefix", &options.prefix, "channel prefix of the vehicle (default: none)");
+  parser.addFlag("--list", &list, "one line per request that failed then or fails now");
+  parser.addPositional("LOG", &logs, "LCM logs of flights");
+  int code = 0;
+  if (!parser.parse(argc, argv, &code)) return code;
+  if (logs.empty()) {
+    std::cerr << parser.usage();
+    return 2;
+  }
+  try {
+    options.config = mmh::loadConfigWithOverrides(node, sets);
+  } catch (const std::exception& e) {
+    std::cerr << "mmh-replan: " << e.what() << "\n";
+    return 2;
+  }
+  std::vector<mmh::ReplanOutcome> all;
+  try {
+    for (const std::string& path : logs) {
+      const std::vector<mmh::ReplanOutcome> outcomes = mmh::replanLog(path, options);
+      if (list) {
+        for (const mmh::ReplanOutcome& o : outcomes) {
+          if (o.ok && o.logged_ok) continue;
+          std::printf("%s %7.2f s  request %lld  %.2f m/s  then: %s  now: %s\n", path.c_str(),
+                      o.t_s, static_cast<long long>(o.request_id), o.start_speed_mps,
+                      !o.logged_answer ? "no answer"
+                      : o.logged_ok    ? "ok"
+                                       : o.logged_detail.c_str(),
+                      o.ok ? "ok" : o.detail.c_str());
+        }
+      }
+      all.insert(all.end(), outcomes.begin(), outcomes.end());
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "mmh-replan: " << e.what() << "\n";
+    return 2;
+  }
+  std::cout << "mode " << options.mode << ", " << logs.size() << " log(s)\n";
+  mmh::printReplanSummary(mmh::summarize(all), std::cout);
+  return 0;
+}

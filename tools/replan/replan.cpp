@@ -1,0 +1,175 @@
+#include "replan.hpp"
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <functional>
+#include <memory>
+#include <regex>
+
+#include "eam_node.hpp"
+#include "mmh/common/checked_decode.hpp"
+#include "mmh/common/lcm_runtime.hpp"
+#include "mmh/common/local_map_codec.hpp"
+#include "mmh/common/msg_convert.hpp"
+#include "mmh/common/plan_status.hpp"
+#include "mmh/eam/planner.hpp"
+#include "mmh/local_map_t.hpp"
+#include "mmh/plan_request_t.hpp"
+#include "mmh/plan_result_t.hpp"
+#include "mmh/som/planner.hpp"
+
+namespace mmh {
+namespace {
+
+struct Answer {
+  bool ok = false;
+  std::string detail;
+};
+
+// The mode's planner behind one signature: the map and the request message.
+using PlanFn = std::function<Answer(const VoxelGrid&, const plan_request_t&)>;
+
+struct ModePlanner {
+  std::string request_channel;
+  int8_t wire_mode = 0;
+  PlanFn plan;
+  std::function<void(const VoxelGrid&)> prepare;
+};
+
+ModePlanner makePlanner(const std::string& mode, const Config& config) {
+  if (mode == "eam") {
+    auto planner = std::make_shared<eam::Planner>(eam::loadEamParams(config));
+    return {channels::kPlanRequestEam, plan_request_t::MODE_EAM,
+            [planner](const VoxelGrid& grid, const plan_request_t& msg) {
+              const eam::PlanResult r = planner->plan(grid, eamRequestOf(msg));
+              return Answer{r.ok, r.ok ? "" : std::string(toString(r.reason)) + ": " + r.detail};
+            },
+            [planner](const VoxelGrid& grid) { planner->prepare(grid); }};
+  }
+  if (mode == "som") {
+    auto planner = std::make_shared<som::Planner>(som::loadSomParams(config));
+    return {
+        channels::kPlanRequestSom, plan_request_t::MODE_SOM,
+        [planner](const VoxelGrid& grid, const plan_request_t& msg) {
+          const som::PlanOutput r =
+              planner->plan(grid, startStateOf(msg), toVec3(msg.target), msg.max_speed_mps);
+          return Answer{r.ok(), r.ok() ? "" : std::string(toString(r.status)) + ": " + r.detail};
+        },
+        [planner](const VoxelGrid& grid) { planner->prepare(grid); }};
+  }
+  throw ReplanInputError("unknown mode '" + mode + "' (eam or som)");
+}
+
+template <class Msg>
+bool decodeEvent(const lcm::LogEvent& e, Msg* msg) {
+  std::string why;
+  return decodeChecked(e.data, static_cast<uint32_t>(e.datalen), *msg, &why) == DecodeOutcome::kOk;
+}
+
+}  // namespace
+
+std::vector<ReplanOutcome> replanLog(const std::string& log_path, const ReplanOptions& options) {
+  ModePlanner planner = makePlanner(options.mode, options.config);
+  lcm::LogFile log(log_path, "r");
+  if (!log.good()) throw ReplanInputError("cannot read LCM log " + log_path);
+  const std::string map_channel = options.prefix + channels::kLocalMap;
+  const std::string request_channel = options.prefix + planner.request_channel;
+  const std::string result_channel = options.prefix + channels::kPlanResult;
+  LocalMapReceiver map(options.config.getDouble("map.inflation_m"));
+  std::vector<ReplanOutcome> outcomes;
+  std::map<int64_t, size_t> pending;  // request id -> index into outcomes
+  int64_t t0 = -1;
+  for (const lcm::LogEvent* e = log.readNextEvent(); e != nullptr; e = log.readNextEvent()) {
+    if (t0 < 0) t0 = e->timestamp;
+    if (e->channel == map_channel) {
+      local_map_t msg;
+      if (decodeEvent(*e, &msg) && map.apply(msg) == LocalMapReceiver::Result::kApplied &&
+          map.lastWasKeyframe())
+        planner.prepare(map.grid());
+    } else if (e->channel == request_channel) {
+      plan_request_t msg;
+      if (!decodeEvent(*e, &msg) || msg.mode != planner.wire_mode) continue;
+      ReplanOutcome o;
+      o.t_s = 1e-6 * static_cast<double>(e->timestamp - t0);
+      o.request_id = msg.request_id;
+      o.start_speed_mps = toVec3(msg.start_velocity).norm();
+      if (map.hasMap()) {
+        const auto started = std::chrono::steady_clock::now();
+        const Answer a = planner.plan(map.grid(), msg);
+        o.compute_ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started)
+                .count();
+        o.ok = a.ok;
+        o.detail = a.detail;
+      } else {
+        o.detail = "no LOCAL_MAP before the request";
+      }
+      pending[o.request_id] = outcomes.size();
+      outcomes.push_back(o);
+    } else if (e->channel == result_channel) {
+      plan_result_t msg;
+      if (!decodeEvent(*e, &msg) || msg.mode != planner.wire_mode) continue;
+      const auto it = pending.find(msg.request_id);
+      if (it == pending.end()) continue;
+      ReplanOutcome& o = outcomes[it->second];
+      o.logged_answer = true;
+      o.logged_ok = msg.status == plan_result_t::STATUS_OK;
+      o.logged_detail = o.logged_ok ? "" : msg.detail;
+      pending.erase(it);
+    }
+  }
+  return outcomes;
+}
+
+std::string failureKind(const std::string& detail) {
+  static const std::regex kNumber(R"([0-9]+(\.[0-9]+)?([eE][-+]?[0-9]+)?)");
+  const std::string kind = std::regex_replace(detail, kNumber, "#");
+  // The step timings in brackets differ between any two calls: not part of the kind.
+  const size_t bracket = kind.find(" [");
+  return bracket == std::string::npos ? kind : kind.substr(0, bracket);
+}
+
+ReplanSummary summarize(const std::vector<ReplanOutcome>& outcomes) {
+  ReplanSummary s;
+  double total_ms = 0.0;
+  for (const ReplanOutcome& o : outcomes) {
+    if (!o.logged_answer) {
+      ++s.unanswered;
+      continue;
+    }
+    ++s.requests;
+    total_ms += o.compute_ms;
+    s.max_compute_ms = std::max(s.max_compute_ms, o.compute_ms);
+    if (!o.logged_ok) ++s.failed_before;
+    if (!o.ok) {
+      ++s.failed_now;
+      ++s.reasons_now[failureKind(o.detail)];
+    }
+    if (!o.logged_ok && o.ok) ++s.fixed;
+    if (o.logged_ok && !o.ok) ++s.broken;
+  }
+  if (s.requests > 0) s.mean_compute_ms = total_ms / s.requests;
+  return s;
+}
+
+void printReplanSummary(const ReplanSummary& s, std::ostream& out) {
+  char line[256];
+  std::snprintf(line, sizeof(line),
+                "requests %d (and %d without a logged answer)\nfailed then %d, now %d: %d "
+                "fixed, %d broken\ncompute now: mean %.2f ms, max %.2f ms\n",
+                s.requests, s.unanswered, s.failed_before, s.failed_now, s.fixed, s.broken,
+                s.mean_compute_ms, s.max_compute_ms);
+  out << line;
+  if (!s.reasons_now.empty()) out << "failures now by kind:\n";
+  std::vector<std::pair<int, std::string>> kinds;
+  for (const auto& [kind, n] : s.reasons_now) kinds.emplace_back(n, kind);
+  std::sort(kinds.begin(), kinds.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second < b.second;
+  });
+  for (const auto& [n, kind] : kinds) out << "  " << n << "  " << kind << "\n";
+}
+
+}  // namespace mmh

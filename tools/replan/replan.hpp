@@ -1,0 +1,66 @@
+// Re-plans the requests a planning mode received in a recorded flight: every PLAN_REQUEST_EAM (or
+// _SOM) of an LCM log is given to this build's planner, with the map the mode had rebuilt from
+// LOCAL_MAP at that moment, and paired with the answer it gave then. The desk tool for a change to
+// a mode: how many of a flight's failures it turns into answers, and which answers it loses.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "mmh/common/config.hpp"
+
+namespace mmh {
+
+class ReplanInputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// One request of the log, planned again.
+struct ReplanOutcome {
+  double t_s = 0.0;  // log time since the first event
+  int64_t request_id = 0;
+  double start_speed_mps = 0.0;
+  bool logged_answer = false;  // the log holds the mode's PLAN_RESULT for it
+  bool logged_ok = false;
+  std::string logged_detail;  // failure text of the logged answer
+  bool ok = false;            // planned again
+  std::string detail;         // failure text now ("" when ok)
+  double compute_ms = 0.0;    // planned again, wall clock
+};
+
+struct ReplanOptions {
+  std::string mode = "eam";  // eam or som
+  std::string prefix;        // channel prefix of the vehicle
+  Config config;             // planner parameters and map.inflation_m
+};
+
+// All requests of the mode in the log, in order. Throws ReplanInputError when the log cannot be
+// read or the mode is unknown.
+std::vector<ReplanOutcome> replanLog(const std::string& log_path, const ReplanOptions& options);
+
+struct ReplanSummary {
+  int requests = 0;       // requests with a logged answer
+  int unanswered = 0;     // requests without one in the log (not counted above)
+  int failed_before = 0;  // logged failures
+  int failed_now = 0;
+  int fixed = 0;   // failed then, answered now
+  int broken = 0;  // answered then, failed now
+  double mean_compute_ms = 0.0;
+  double max_compute_ms = 0.0;
+  std::map<std::string, int> reasons_now;  // failure text without its numbers -> count
+};
+
+ReplanSummary summarize(const std::vector<ReplanOutcome>& outcomes);
+
+// A failure's text with its numbers taken out ("max acceleration # m/s^# exceeds #"), so that
+// failures of one kind count together.
+std::string failureKind(const std::string& detail);
+
+void printReplanSummary(const ReplanSummary& summary, std::ostream& out);
+
+}  // namespace mmh
