@@ -141,14 +141,26 @@ bool ServiceContext::admit(const std::string& channel, const std::string& source
   // stale until that time. The clock may lead by what passed on the wall clock meanwhile (idle
   // periods, paused replays) plus kMaxClockLeadUs (clock offsets between machines).
   const int64_t wall_now = wallTimeUs();
+  const std::string key = channel + "|" + source;
   if (clock_.now() > 0 &&
       utime - clock_.now() > kMaxClockLeadUs + (wall_now - clock_.movedWallUs())) {
-    reject("rejected_time_jump", channel + " from " + source + ": utime jumps " +
-                                     std::to_string((utime - clock_.now()) / 1000000) +
-                                     " s ahead of the message clock");
-    return false;
+    auto [jump, fresh] = jumping_since_.try_emplace(key, wall_now, utime);
+    if (!fresh && utime < jump->second.second) jump->second.first = wall_now;  // went back
+    jump->second.second = utime;
+    if (wall_now - jump->second.first < kClockResyncUs) {
+      reject("rejected_time_jump", channel + " from " + source + ": utime jumps " +
+                                       std::to_string((utime - clock_.now()) / 1000000) +
+                                       " s ahead of the message clock");
+      return false;
+    }
+    ++counters_["clock_resyncs"];
+    logWarn(service_ + ": " + channel + " from " + source + " has stayed " +
+            std::to_string((utime - clock_.now()) / 1000000) +
+            " s ahead of the message clock for " + std::to_string(kClockResyncUs / 1000) +
+            " ms: its clock moved, following it");
   }
-  auto& last = last_in_[channel + "|" + source];
+  jumping_since_.erase(key);
+  auto& last = last_in_[key];
   if (last.first > 0 && utime < last.first) {
     if (seq <= 1) {
       // The publisher restarted (its sequence starts again): accept its new clock.

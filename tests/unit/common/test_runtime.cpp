@@ -177,6 +177,42 @@ TEST(Runtime, AJumpFarAheadOfTheMessageClockIsRefused) {
   EXPECT_EQ(sub.clock().now(), 3'000'000);
 }
 
+TEST(Runtime, AClockThatStaysAheadIsFollowedAfterTheResyncTime) {
+  // A simulator starved of the CPU catches up: its clock jumps 11 s and goes on from there. Its
+  // messages are refused as jumps at first; once they have stayed ahead for kClockResyncUs of
+  // wall time, they are delivered again and the message clock follows.
+  auto lcm = mmh::openLcm("memq://");
+  mmh::ServiceContext pub(*lcm, "pub", "");
+  mmh::ServiceContext sub(*lcm, "sub", "");
+  Sink sink;
+  sub.subscribe(mmh::channels::kOdometry, &Sink::onOdom, &sink);
+  mmh::odometry_t first = odom(1'000'000);
+  pub.publish(mmh::channels::kOdometry, first);
+  drain(*lcm);
+  const int64_t jumped = 1'000'000 + 11'000'000;
+  const int64_t wall_start = mmh::wallTimeUs();
+  int64_t utime = jumped;
+  while (sink.odoms.size() < 2 &&
+         mmh::wallTimeUs() - wall_start < 5 * mmh::ServiceContext::kClockResyncUs) {
+    mmh::odometry_t o = odom(utime);
+    pub.publish(mmh::channels::kOdometry, o);
+    drain(*lcm);
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    utime += 50'000;
+  }
+  ASSERT_EQ(sink.odoms.size(), 2u) << "the jumped clock was never followed";
+  EXPECT_GE(sink.odoms[1].header.utime, jumped);
+  EXPECT_GE(sub.counter("rejected_time_jump"), 1);
+  EXPECT_EQ(sub.counter("clock_resyncs"), 1);
+  EXPECT_EQ(sub.clock().now(), sink.odoms[1].header.utime);
+  // From then on, the new clock's messages are plain input.
+  mmh::odometry_t next = odom(utime + 50'000);
+  pub.publish(mmh::channels::kOdometry, next);
+  drain(*lcm);
+  EXPECT_EQ(sink.odoms.size(), 3u);
+  EXPECT_EQ(sub.counter("clock_resyncs"), 1);
+}
+
 TEST(Runtime, EstimatedNowGoesOnWithTheWallClockWhileInputsAreSilent) {
   auto lcm = mmh::openLcm("memq://");
   mmh::ServiceContext pub(*lcm, "pub", "");

@@ -98,6 +98,11 @@ class ServiceContext {
   // (more than kMaxClockLeadUs beyond the wall time since it last moved) are counted and logged,
   // not delivered.
   static constexpr int64_t kMaxClockLeadUs = 10'000'000;
+  // A source whose messages on a channel all jump ahead, without going back, for this long on the
+  // wall clock has really moved its clock (a simulator that caught up after being starved of the
+  // CPU): its messages are delivered again and the message clock follows (`clock_resyncs`). A
+  // single message stamped far ahead does not last that long.
+  static constexpr int64_t kClockResyncUs = 1'000'000;
   template <class Msg, class Owner>
   void subscribe(const std::string& base_channel, void (Owner::*method)(const Msg&), Owner* owner);
   // Same, for handlers that need the full channel name (e.g. a regex subscription over all
@@ -152,6 +157,8 @@ class ServiceContext {
   std::map<std::string, LogLimiter> limiters_;
   std::map<std::string, int64_t> publish_seq_;
   std::map<std::string, std::pair<int64_t, int64_t>> last_in_;  // channel|source -> (utime, seq)
+  // channel|source -> wall time of the first of the time jumps in a row and the last one's utime.
+  std::map<std::string, std::pair<int64_t, int64_t>> jumping_since_;
   std::map<std::string, double> loss_;
   std::mt19937_64 loss_rng_{1};
   std::vector<std::unique_ptr<detail::SubscriptionBase>> subscriptions_;
