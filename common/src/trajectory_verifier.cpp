@@ -112,21 +112,23 @@ bool checkPerPiece(const Trajectory& traj, const VerifierOptions& o, VerifyResul
           return failAt(r, VerifyCheck::kOccupied, "hits an occupied cell", i, t0 + tl), false;
         if (escaping || o.check_inflated) {
           if (in_window && grid->isBlockedLinear(idx)) {
-            if (escaping && (p - o.start.position).norm() > o.escape_radius_m)
+            if (!escaping) {
+              if (!forcedByStart(*grid, p, t0 + tl, o.forced_until_s, o.escape_min_distance_m,
+                                 o.escape_depth_tol_m))
+                return failAt(r, VerifyCheck::kInflated, "enters the inflated obstacles", i,
+                              t0 + tl),
+                       false;
+            } else if ((p - o.start.position).norm() > o.escape_radius_m) {
               return failAt(r, VerifyCheck::kEscapeTooFar,
                             "stays in the inflated margin it starts in too far from the start", i,
                             t0 + tl),
                      false;
-            const bool forced =
-                t0 + tl <= o.forced_until_s &&
-                keepsEscapeDistance(*grid, p, o.escape_min_distance_m, o.escape_depth_tol_m);
-            if (!escaping && !forced)
-              return failAt(r, VerifyCheck::kInflated, "enters the inflated obstacles", i, t0 + tl),
-                     false;
-            if (!keepsEscapeDistance(*grid, p, o.escape_min_distance_m, o.escape_depth_tol_m))
+            } else if (!keepsEscapeDistance(*grid, p, o.escape_min_distance_m,
+                                            o.escape_depth_tol_m)) {
               return failAt(r, VerifyCheck::kEscapeDeeper,
                             "goes deeper into the inflated margin it starts in", i, t0 + tl),
                      false;
+            }
           } else {
             escaping = false;
           }

@@ -162,9 +162,9 @@ std::vector<CollisionStretch> findCollisionStretches(const UniformBspline& splin
           escaping = false;
         }
       }
-      if (blocked && sample.t <= forced_until_s && grid.atLinear(idx) != Occupancy::kOccupied &&
-          keepsEscapeDistance(grid, sample.point, escape_min_distance_m)) {
-        blocked = false;  // the start state fixes this stretch of the way
+      if (blocked && grid.atLinear(idx) != Occupancy::kOccupied &&
+          forcedByStart(grid, sample.point, sample.t, forced_until_s, escape_min_distance_m)) {
+        blocked = false;
       }
       if (blocked) {
         if (!in_run) {

@@ -44,4 +44,15 @@ inline bool keepsEscapeDistance(const VoxelGrid& grid, const Eigen::Vector3d& p,
   return occupiedDistance(grid, p, min_distance_m) >= min_distance_m - tolerance_m;
 }
 
+// The first forced_until_s of a trajectory are fixed by its start state: no plan can leave the way
+// the start carries the vehicle by more than a few centimetres (EamParams::start_forced_s). A
+// sample there in the inflated margin (not in an occupied cell: the caller's check) is no
+// collision when it keeps the escape distance (forced_until_s 0: never).
+inline bool forcedByStart(const VoxelGrid& grid, const Eigen::Vector3d& p, double t_s,
+                          double forced_until_s, double min_distance_m,
+                          double tolerance_m = kEscapeDepthTolerance) {
+  return forced_until_s > 0.0 && t_s <= forced_until_s &&
+         keepsEscapeDistance(grid, p, min_distance_m, tolerance_m);
+}
+
 }  // namespace mmh

@@ -79,7 +79,7 @@ struct VerifierOptions {
   // when the start position itself is blocked (false; SOM).
   bool escape_from_first_sample = true;
   // kPerPiece: samples up to this time after the start may lie in the inflated margin when they
-  // keep escape_min_distance_m (the way the start state fixes, see EamParams::start_forced_s).
+  // keep escape_min_distance_m (mmh::forcedByStart).
   double forced_until_s = 0.0;
   // --- sampling ---
   enum class Sampling { kPerPiece, kTimeSteps };
