@@ -233,7 +233,14 @@ bool CorridorBuilder::build(const VoxelGrid& grid, const std::vector<Eigen::Vect
     }
     polys.push_back(std::move(poly));
     const Polytope& p = polys.back();
-    if (p.contains(target, -kCorridorContainTolerance)) break;
+    // The target ends the corridor once it lies the junction margin inside. A target that is
+    // only in the box grown round a seed short of it may sit on a face, which the optimiser
+    // (aiming inside every face, with the end point fixed) cannot satisfy: one more polytope
+    // seeded up to the target. Only a seed that ends at the target may leave it on a face.
+    const bool seed_ends_at_target = seed_s >= path.length() - 1e-9;
+    if (p.contains(target, params.junction_margin_m) ||
+        (seed_ends_at_target && p.contains(target, -kCorridorContainTolerance)))
+      break;
 
     // Junction: where the path leaves this polytope, pulled inside by the junction margin.
     const double exit = std::max(seed_s, exitArcLength(path, p, seed_s));

@@ -107,6 +107,23 @@ TEST(Corridor, FreeSpaceNeedsOnePolytope) {
   EXPECT_LE(b.corridor.polytopes.size(), 5u);
 }
 
+// A straight 7.5 m path in free space: the second seed (3.5 to 6.5 m) stops short of the target,
+// and the box grown round it ends exactly at the target. A corridor that ended there left the
+// target on a face, which the optimiser, aiming inside every face with the end point fixed, could
+// not satisfy (SOM took 8.9 s for this line, or failed from 3 m/s).
+TEST(Corridor, TheLastPolytopeHoldsTheTargetInsideTheJunctionMargin) {
+  const auto w = som_test::makeWorld([](const Vector3d&) { return false; });
+  const std::vector<Vector3d> path{Vector3d(0, 0, 1.2), Vector3d(7.5, 0, 1.2)};
+  const mmh::som::CorridorParams params;
+  mmh::som::CorridorBuilder builder;
+  mmh::som::Corridor c;
+  std::string why;
+  ASSERT_TRUE(builder.build(*w.grid, path, Vector3d(-2, -4, 0.3), Vector3d(14, 4, 2.7), {}, params,
+                            &c, &why))
+      << why;
+  EXPECT_LE(c.polytopes.back().maxViolation(path.back()), -params.junction_margin_m);
+}
+
 TEST(Corridor, RedundantPolytopesAreRemoved) {
   const auto w = som_test::pillars();
   const Built b = buildCorridor(w);

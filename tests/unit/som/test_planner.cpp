@@ -110,6 +110,21 @@ TEST(SomPlanner, MovingStart) {
   expectVerified(w, start, planner.plan(*w.grid, start, w.target));
 }
 
+// A straight line in free space, short enough for a few polytopes: near the rest-to-rest bound
+// from rest, and an answer from full speed (the corridor once ended with the target on a face).
+TEST(SomPlanner, AStraightLineInFreeSpaceIsFlownNearTheBound) {
+  auto w = som_test::makeWorld([](const Vector3d&) { return false; });
+  w.target = w.start + Vector3d(7.5, 0, 0);
+  mmh::som::Planner planner(testParams());
+  const auto start = atRest(w.start);
+  const auto out = planner.plan(*w.grid, start, w.target);
+  expectVerified(w, start, out);
+  EXPECT_LT(out.trajectory.duration(), 1.25 * mmh::restToRestTime(7.5, 3.0, 2.0));
+  mmh::KinematicState fast = atRest(w.start);
+  fast.velocity = Vector3d(3.0, 0, 0);
+  expectVerified(w, fast, planner.plan(*w.grid, fast, w.target));
+}
+
 // A start at 2.5 m/s straight at the first wall of the S-bend: the plan has to brake for the
 // bend. An initial time allocation that ignores the corners of the path starts the optimiser at
 // full speed through them, and it ends in a local minimum over a_max (verification fails).
