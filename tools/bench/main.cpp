@@ -110,8 +110,8 @@ int main(int argc, char** argv) {
   parser.addVector3("--size", &size, "forest / ego-forest box x,y,z (m), centred on x = y = 0");
   parser.addString("--sensor", &sensor, "depth or lidar");
   parser.addString("--set", &set_help,
-                   "key=value: override one configuration key for every flight (repeatable; the "
-                   "key must exist)");
+                   "key=value: override one configuration key for every flight (repeatable; a key "
+                   "of docs/configuration.md, also one the file leaves out)");
   parser.addVector3("--start", &start, "start x,y,z");
   parser.addVector3("--goal", &goal, "goal x,y,z");
   parser.addDouble("--timeout", &timeout_s, "simulated seconds before a flight counts as failed");

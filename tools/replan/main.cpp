@@ -28,11 +28,12 @@ int main(int argc, char** argv) {
       "again with this build's planner and the map the mode had rebuilt from LOCAL_MAP then, and "
       "compares with the recorded PLAN_RESULT: which failures are answered now, which answers "
       "fail now, and why.");
-  parser.addString("--mode", &options.mode, "eam or som (default: eam)");
+  parser.addString("--mode", &options.mode, "eam or som");
   parser.addString("--config", &node.config_path,
                    "configuration (default: $MMH_CONFIG or deploy/config/default.yaml)");
   parser.addString("--set", &set_help,
-                   "key=value: override one configuration key (repeatable; the key must exist)");
+                   "key=value: override one configuration key (repeatable; a key of "
+                   "docs/configuration.md, also one the file leaves out)");
   parser.addString("--prefix", &options.prefix, "channel prefix of the vehicle (default: none)");
   parser.addFlag("--list", &list, "one line per request that failed then or fails now");
   parser.addPositional("LOG", &logs, "LCM logs of flights");

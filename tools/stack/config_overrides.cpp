@@ -55,20 +55,23 @@ Config applyConfigOverrides(const std::string& yaml_text, const std::string& sou
     std::vector<std::string> parts;
     std::stringstream path(key);
     for (std::string part; std::getline(path, part, '.');) parts.push_back(part);
-    // Walk with const lookups: yaml-cpp's non-const operator[] would create a missing key.
+    // A registered key the file omits (an optional one) is added; any other missing key is
+    // refused. Walk with const lookups: yaml-cpp's non-const operator[] would create it.
+    const bool registered = findConfigKey(key) != nullptr;
     YAML::Node parent = root;
     for (size_t i = 0; i + 1 < parts.size(); ++i) {
       const YAML::Node& view = parent;
       if (!view.IsMap() || !view[parts[i]]) {
-        unknownKey(key, source);
+        if (!registered || (view && !view.IsMap())) unknownKey(key, source);
+        parent[parts[i]] = YAML::Node(YAML::NodeType::Map);
       }
-      parent.reset(view[parts[i]]);
+      parent.reset(parent[parts[i]]);
     }
     const YAML::Node& view = parent;
-    if (parts.empty() || !view.IsMap() || !view[parts.back()]) {
+    if (parts.empty() || !view.IsMap() || (!view[parts.back()] && !registered)) {
       unknownKey(key, source);
     }
-    if (view[parts.back()].IsMap()) {
+    if (view[parts.back()] && view[parts.back()].IsMap()) {
       throw ConfigError("--set: key '" + key + "' is a section; set one of its keys");
     }
     YAML::Node value;

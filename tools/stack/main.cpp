@@ -106,7 +106,8 @@ int main(int argc, char** argv) {
                    "test switch: share of LOCAL_MAP messages planners lose");
   parser.addFlag("--json", &json, "print the result as one JSON object");
   parser.addString("--set", &set_help,
-                   "key=value: override one configuration key (repeatable; the key must exist)");
+                   "key=value: override one configuration key (repeatable; a key of "
+                   "docs/configuration.md, also one the file leaves out)");
   parser.addInt("--vehicles", &vehicles,
                 "vehicles in the one simulation (prefixes <prefix>UAV1_ ..., seeds +0, +1, ...)");
   parser.addFlag("--fit-geofence", &fit_geofence,

@@ -30,6 +30,15 @@ TEST(ConfigOverrides, ReplaceExistingKeys) {
   EXPECT_EQ(c.getVector3("geofence.min_m"), Eigen::Vector3d(-5, -5, 0.5));
 }
 
+TEST(ConfigOverrides, ARegisteredKeyTheFileOmitsIsAdded) {
+  // som.first_step is optional: a file may leave it out and still have it set.
+  const Config c =
+      applyConfigOverrides(kYaml, "test.yaml", {"som.first_step=0.5", "vehicle.max_acc_mps2=4"});
+  EXPECT_DOUBLE_EQ(c.getDouble("som.first_step"), 0.5);
+  EXPECT_DOUBLE_EQ(c.getDouble("vehicle.max_acc_mps2"), 4.0);
+  EXPECT_DOUBLE_EQ(c.getDouble("vehicle.max_vel_mps"), 3.0);
+}
+
 TEST(ConfigOverrides, UnknownKeysSectionsAndMalformedAssignmentsAreRefused) {
   auto message = [](const std::string& assignment) {
     try {
