@@ -58,4 +58,12 @@ double escapeMinDistance(const VoxelGrid& grid, const Eigen::Vector3d& start, do
   return std::min(floor_m, occupiedDistance(grid, start, floor_m));
 }
 
+double escapeZoneEnd(const Trajectory& traj, double radius_m, double step_s) {
+  const Eigen::Vector3d start = traj.position(0.0);
+  for (double t = 0.0; t < traj.duration(); t += step_s) {
+    if ((traj.position(t) - start).norm() > radius_m) return t;
+  }
+  return traj.duration();
+}
+
 }  // namespace mmh

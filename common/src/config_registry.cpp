@@ -348,6 +348,8 @@ std::vector<KeySpec> buildKeys() {
            "A stale input stops the vehicle only when it is faster than this"),
       real("arbiter.stop_decision_margin_s", 0.0, 5.0, "0.5",
            "No usable answer, danger ahead: stop once a stop begun this much later would collide"),
+      real("arbiter.failed_round_speed_ratio", 0.1, 1.0, "0.7",
+           "... meanwhile slow the committed path to this share of its speed per round (1: off)"),
       real("arbiter.progress_min_step_m", 0.01, 10.0, "0.5",
            "Progress: this much nearer to the goal than ever before"),
       real("arbiter.stuck_after_s", 0.5, 600.0, "4.0",

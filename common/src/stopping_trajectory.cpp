@@ -221,6 +221,9 @@ Trajectory makeSlowdownTrajectory(const Trajectory& path, double t0, double max_
   if (t0 >= end - 1e-3 || max_speed_mps <= 0.0) return Trajectory();
   const double top_speed = path.tail(t0).maxSpeed();
   if (top_speed <= max_speed_mps * (1.0 + tolerance)) return Trajectory();
+  // Re-timed to a small share of its speed the rest would take ages (and its fit as long):
+  // braking to rest serves better.
+  if (max_speed_mps < kMinSlowdownRatio * top_speed) return Trajectory();
   const KinematicState start = path.state(t0);
   const double speed = start.velocity.norm();
   const double ratio = max_speed_mps / top_speed;

@@ -197,7 +197,26 @@ bool Arbiter::collisionAhead(int64_t now) const {
   if (!grid_ || !hasCommitted()) return false;
   const Trajectory& t = committed_.trajectory;
   const double t0 = std::max(0.0, (now - committed_.start_utime) * kUs);
-  return firstCollisionTime(*grid_, t, t0, t.duration()).has_value();
+  return committedCollisionTime(t0, t.duration()).has_value();
+}
+
+std::optional<double> Arbiter::committedCollisionTime(double from_s, double to_s) const {
+  const Trajectory& t = committed_.trajectory;
+  const double escape_end = std::min(to_s, committed_.escape_until_s);
+  if (from_s < escape_end) {
+    if (const auto hit =
+            firstCollisionTime(*grid_, t, from_s, escape_end, CollisionLayer::kOccupied))
+      return hit;
+    for (double s = from_s; s < escape_end; s += params_.escape_step_s) {
+      const Eigen::Vector3d p = t.position(s);
+      if (isPointBlocked(*grid_, p) &&
+          !keepsEscapeDistance(*grid_, p, committed_.escape_min_distance_m,
+                               params_.escape_depth_tolerance_m))
+        return s;
+    }
+    from_s = escape_end;
+  }
+  return firstCollisionTime(*grid_, t, from_s, to_s);
 }
 
 double Arbiter::stopTouchDistance() const {
@@ -216,7 +235,7 @@ bool Arbiter::stopCanWait(int64_t now) const {
   const double later_s =
       (now - committed_.start_utime) * kUs + budget_.replan_lead_s + params_.stop_decision_margin_s;
   if (later_s >= t.duration()) return false;
-  if (firstCollisionTime(*grid_, t, std::max(0.0, (now - committed_.start_utime) * kUs), later_s)) {
+  if (committedCollisionTime(std::max(0.0, (now - committed_.start_utime) * kUs), later_s)) {
     return false;
   }
   const Trajectory later_stop = stopAlongCommitted(later_s);
@@ -242,7 +261,7 @@ bool Arbiter::collisionThreat(int64_t now, double* eta_s) const {
   if (!grid_ || !hasCommitted()) return false;
   const Trajectory& t = committed_.trajectory;
   const double elapsed = std::max(0.0, (now - committed_.start_utime) * kUs);
-  const auto hit = firstCollisionTime(*grid_, t, elapsed, t.duration());
+  const auto hit = committedCollisionTime(elapsed, t.duration());
   if (!hit) return false;
   *eta_s = *hit - elapsed;
   const double replan_point_s = replanPointS(t.duration(), committed_.bound_s,
@@ -494,6 +513,12 @@ void Arbiter::commit(const Trajectory& trajectory, int64_t start_utime, Mode mod
   const double bound_s = restToRestTime(straight_m, params_.max_vel_mps, params_.max_acc_mps2);
   committed_ =
       Committed{trajectory, start_utime, mode, ends_at_goal, repaired, std::nullopt, bound_s};
+  if (grid_ && isPointBlocked(*grid_, trajectory.position(0.0))) {
+    committed_.escape_until_s =
+        escapeZoneEnd(trajectory, params_.start_escape_radius_m, params_.escape_step_s);
+    committed_.escape_min_distance_m =
+        escapeMinDistance(*grid_, trajectory.position(0.0), params_.check_inflation_m);
+  }
   CommitOut c;
   c.trajectory_id = next_trajectory_id_++;
   c.start_utime = start_utime;
@@ -623,27 +648,69 @@ void Arbiter::decide(int64_t now, bool by_deadline) {
   d.detail = notes;
   last_failure_notes_ = notes;
   pushDecision(d);
-  stopIfNoTimeLeft(now, by_deadline, notes, round.trigger);
+  if (stopIfNoTimeLeft(now, by_deadline, notes, round.trigger))
+    slowDownAfterFailedRound(now, round.trigger);
 }
 
-void Arbiter::stopIfNoTimeLeft(int64_t now, bool by_deadline, const std::string& notes,
+bool Arbiter::stopIfNoTimeLeft(int64_t now, bool by_deadline, const std::string& notes,
                                Trigger trigger) {
   StopView stop = stopView(now);
   const bool obstacle = collisionAhead(now);
   stop.danger_ahead = obstacle || unmappedAhead(now, params_.stop_decision_margin_s).has_value();
   stop.fallback_exhausted = chain_.exhausted();
   stop.by_deadline = by_deadline;
-  if (!stop.danger_ahead || stop.committed_is_stop) return;
+  if (!stop.danger_ahead || stop.committed_is_stop) return false;
   const bool stuck =
       stuckResponse(progress_.secondsWithoutProgress(now), params_) != StuckResponse::kNone;
   stop.retry_held_back = retryThrottled(Trigger::kRetry, false, false, stuck,
                                         (now - last_round_utime_) * kUs, params_);
   stop.stop_can_wait = stopCanWait(now);
-  if (!shouldStop(StopCause::kNoUsableAnswer, stop, params_)) return;
+  if (!shouldStop(StopCause::kNoUsableAnswer, stop, params_)) return stop.stop_can_wait;
   commitStop(now,
              std::string("no usable answer and ") +
                  (obstacle ? "danger ahead: " : "unmapped space within stopping reach: ") + notes,
              trigger);
+  return false;
+}
+
+void Arbiter::slowDownAfterFailedRound(int64_t now, Trigger trigger) {
+  const double ratio = params_.failed_round_speed_ratio;
+  if (ratio >= 1.0 || !hasCommitted() || committed_.mode == Mode::kStop || commit_ || round_)
+    return;
+  const int64_t start = now + static_cast<int64_t>(budget_.replan_lead_s * 1e6);
+  const Trajectory& path = committed_.trajectory;
+  const double t0 = (start - committed_.start_utime) * kUs;
+  if (t0 >= path.duration()) return;
+  const double speed = path.velocity(t0).norm();
+  // Slower than this, the next rounds start slow enough; slowing on would only crawl.
+  constexpr double kMinSpeedMps = 0.5;
+  if (ratio * speed < kMinSpeedMps) return;
+  const Trajectory slow = makeSlowdownTrajectory(path, t0, ratio * speed, params_.max_acc_mps2);
+  if (slow.empty()) return;
+  // The same path re-timed meets the danger where the committed trajectory does, only later;
+  // the fitted curve must not meet anything nearer.
+  if (grid_) {
+    if (const auto slow_hit = firstCollisionTime(*grid_, slow, 0.0, slow.duration())) {
+      const auto hit = committedCollisionTime(t0, path.duration());
+      if (!hit || slow.arcLength(0.0, *slow_hit) < path.arcLength(t0, *hit) - grid_->resolution())
+        return;
+    }
+  }
+  commit(slow, start, committed_.mode, committed_.ends_at_goal);
+  ++counters_.failed_round_slowdowns;
+  DecisionOut d;
+  d.trigger = trigger;
+  d.outcome = Outcome::kCommitted;
+  d.committed_mode = committed_.mode;
+  d.trajectory_id = commit_->trajectory_id;
+  d.local_target = slow.position(slow.duration());
+  // Braking is the first answer to the danger; the plan round it comes later.
+  d.threat_seen_utime = std::exchange(threat_seen_utime_, std::nullopt).value_or(0);
+  char text[96];
+  std::snprintf(text, sizeof(text),
+                "slowing down to %.2f m/s while every mode fails: ", ratio * speed);
+  d.detail = text + last_failure_notes_;
+  pushDecision(d);
 }
 
 void Arbiter::onStaleOdometry(int64_t now) {

@@ -476,7 +476,8 @@ TEST_F(ArbiterRules, AnObstacleMappedOnABrakingStopIsAnsweredOnThatMap) {
 
 TEST_F(ArbiterRules, ADangerThatANewMapNoLongerShowsIsAnsweredByNoLaterCommit) {
   params_.stale_map_s = 10.0;
-  params_.emergency_horizon_s = 30.0;  // every collision is an emergency: EAM
+  params_.failed_round_speed_ratio = 1.0;  // no slowdown answers the danger meanwhile
+  params_.emergency_horizon_s = 30.0;      // every collision is an emergency: EAM
   params_.defer_far_collisions = false;
   auto a = started(Policy::kMmh);
   KinematicState before;
@@ -516,6 +517,7 @@ TEST_F(ArbiterRules, ADangerThatANewMapNoLongerShowsIsAnsweredByNoLaterCommit) {
 TEST_F(ArbiterRules, AFarDangerLetsTheStopWaitUntilItCannotWaitAnyLonger) {
   params_.stale_map_s = 10.0;  // no new maps in this test, and no stale-map stop either
   params_.defer_far_collisions = false;
+  params_.failed_round_speed_ratio = 1.0;  // the stop rule alone (the slowdown: its own test)
   auto a = started(Policy::kMmh);
   KinematicState before;
   const double t1 = flyToCruise(*a, &before);
@@ -541,6 +543,72 @@ TEST_F(ArbiterRules, AFarDangerLetsTheStopWaitUntilItCannotWaitAnyLonger) {
   EXPECT_FALSE(mmh::firstCollisionTime(grid_, t, 0.0, t.duration()).has_value());
   EXPECT_LT(t.velocity(t.duration()).norm(), 1e-6);
   EXPECT_LT((t.position(t.duration()) - pillar).head<2>().norm(), 0.4 + 1.5);  // it came close
+}
+
+// Every mode failed, the danger is far: while the stop waits, the committed trajectory bleeds
+// speed along its own path, so that the next rounds start slower; the danger is answered.
+TEST_F(ArbiterRules, AFailedRoundWithAFarDangerSlowsTheCommittedPathWhileTheStopWaits) {
+  params_.stale_map_s = 10.0;
+  params_.defer_far_collisions = false;
+  for (const double ratio : {1.0, 0.7}) {
+    SCOPED_TRACE("ratio " + std::to_string(ratio));
+    params_.failed_round_speed_ratio = ratio;
+    grid_ = mmh::VoxelGrid(0.1, Vector3i(-160, -160, -8), Vector3i(320, 320, 40));
+    grid_.setInflationRadius(params_.check_inflation_m);
+    for (int64_t i = 0; i < grid_.numCells(); ++i) grid_.setLinear(i, mmh::Occupancy::kFree);
+    auto a = started(Policy::kMmh);
+    KinematicState before;
+    const double t1 = cruiseIntoMappedPillar(*a, 7.0, &before);
+    const Trajectory path = a->committed();
+    const int64_t path_start = a->committedStartUtime();
+    auto eam = a->takeRequests();
+    ASSERT_EQ(eam.size(), 1u);
+    a->takeDecisions();
+    a->onAnswer(failedAnswer(eam[0]), at(t1 + 0.005));
+    auto commit = a->takeCommit();
+    const auto decisions = a->takeDecisions();
+    ASSERT_FALSE(decisions.empty());
+    EXPECT_EQ(decisions.front().outcome, Outcome::kFailed);
+    if (ratio == 1.0) {
+      EXPECT_FALSE(commit.has_value());  // off: the committed trajectory flies on
+      continue;
+    }
+    ASSERT_TRUE(commit.has_value());
+    EXPECT_NE(commit->mode, Mode::kStop);
+    EXPECT_EQ(a->counters().failed_round_slowdowns, 1);
+    ASSERT_EQ(decisions.size(), 2u);
+    EXPECT_EQ(decisions.back().outcome, Outcome::kCommitted);
+    EXPECT_NE(decisions.back().detail.find("slowing down"), std::string::npos);
+    EXPECT_GT(decisions.back().threat_seen_utime, 0);  // the danger's first answer
+    const Trajectory& slow = commit->trajectory;
+    const double s0 = (commit->start_utime - path_start) * 1e-6;
+    const double speed = path.velocity(s0).norm();
+    EXPECT_NEAR(slow.velocity(0.0).norm(), speed, 1e-3);
+    EXPECT_LE(slow.maxAcceleration(), params_.max_acc_mps2 * 1.001);
+    // Down to the ratio once the transition is over (within the slowdown's fit), on the old path.
+    EXPECT_LT(slow.velocity(0.5 * slow.duration()).norm(), ratio * speed * 1.05);
+    for (double t = 0.0; t <= slow.duration(); t += 0.05) {
+      double nearest = 1e9;
+      for (double u = s0; u <= path.duration(); u += 0.002)
+        nearest = std::min(nearest, (path.position(u) - slow.position(t)).norm());
+      ASSERT_LT(nearest, 0.02) << "at " << t << " s";
+    }
+    // Every later round fails too (no mode answers): the stop still comes, slower and clear.
+    std::optional<CommitOut> stop;
+    for (double t = t1 + 0.02; t < t1 + 8.0 && !(stop && stop->mode == Mode::kStop); t += 0.01) {
+      const int64_t now = at(t);
+      a->onOdometry(a->committed().state((now - a->committedStartUtime()) * 1e-6), now);
+      a->takeRequests();
+      stop = a->takeCommit();
+    }
+    ASSERT_TRUE(stop.has_value());
+    ASSERT_EQ(stop->mode, Mode::kStop);
+    EXPECT_GT(a->counters().failed_round_slowdowns, 1);
+    EXPECT_LT(stop->trajectory.velocity(0.0).norm(), ratio * speed * 1.05);
+    const Trajectory& st = stop->trajectory;
+    EXPECT_FALSE(mmh::firstCollisionTime(grid_, st, 0.0, st.duration()).has_value());
+    EXPECT_LT(st.velocity(st.duration()).norm(), 1e-6);
+  }
 }
 
 TEST_F(ArbiterRules, WhileStuckAFailedRoundWithTheDangerCloseStopsAtOnce) {
@@ -950,6 +1018,13 @@ TEST_F(ArbiterRules, AnAnswerMayLeaveTheMarginItStartsIn) {
   auto commit = a->takeCommit();
   ASSERT_TRUE(commit.has_value());
   EXPECT_EQ(commit->mode, retry[0].mode);
+  // Flown with new maps of the same pillar, the accepted escape is no collision: asked to
+  // repair it, the modes would find the start in the margin again, fail, and the vehicle would
+  // stop there, round after round.
+  a->takeDecisions();
+  for (const auto& request : fly(*a, 0.02, 0.45 * commit->trajectory.duration()))
+    EXPECT_NE(request.trigger, Trigger::kCollision);
+  for (const auto& d : a->takeDecisions()) EXPECT_NE(d.outcome, Outcome::kStopping) << d.detail;
 }
 
 // Answers that take 120 ms on a loaded computer miss the 40 ms deadline once; the next rounds

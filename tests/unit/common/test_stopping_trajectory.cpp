@@ -334,4 +334,8 @@ TEST(SlowdownTrajectory, NothingToDoWhenThePathIsSlowEnough) {
   EXPECT_TRUE(mmh::makeSlowdownTrajectory(path, 1.0, path.maxSpeed() + 0.1, 2.0).empty());
   // Past the fastest part: what is left is slower than allowed.
   EXPECT_TRUE(mmh::makeSlowdownTrajectory(path, path.duration() - 0.5, 1.0, 2.0).empty());
+  // A tiny share of the top speed would re-time the rest into ages: none (stop instead).
+  EXPECT_TRUE(
+      mmh::makeSlowdownTrajectory(path, 1.0, 0.5 * mmh::kMinSlowdownRatio * path.maxSpeed(), 2.0)
+          .empty());
 }

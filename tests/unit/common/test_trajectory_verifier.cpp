@@ -136,6 +136,29 @@ TEST_F(Verifier, CollisionsAndTheEscape) {
   EXPECT_EQ(mmh::verifyTrajectory(line(), o).failed, VerifyCheck::kEscapeDeeper);
 }
 
+TEST_F(Verifier, NearTheStartTheEscapeMayTouchTheMarginAgainKeepingItsDistance) {
+  // Start 0.15 m in front of an obstacle (margin 0.25 m); the way out leaves that margin near
+  // x = 0.1 and crosses cells whose centres lie 0.2 m from another one beside it (x = 0.35,
+  // y = 1.25) while the path keeps more than the start's distance to every occupied cell.
+  mmh::VoxelGrid grid = grid_;
+  grid.setInflationRadius(0.25);
+  grid.set(Vector3i(8, 10, 10), mmh::Occupancy::kOccupied);   // x = -0.15
+  grid.set(Vector3i(13, 12, 10), mmh::Occupancy::kOccupied);  // (0.35, 1.25)
+  VerifierOptions o = allChecks(&grid);
+  o.sampling = VerifierOptions::Sampling::kTimeSteps;
+  o.escape_min_distance_m = mmh::escapeMinDistance(grid, o.start.position, 0.25);
+  o.escape_radius_m = 0.5;
+  const mmh::VerifyResult within = mmh::verifyTrajectory(line(), o);
+  EXPECT_TRUE(within.ok) << within.why;
+  // Beyond the escape radius the same cells are a collision.
+  o.escape_radius_m = 0.1;
+  EXPECT_EQ(mmh::verifyTrajectory(line(), o).failed, VerifyCheck::kInflated);
+  // And near the start, nearer than the start was is still refused.
+  o.escape_radius_m = 0.5;
+  o.escape_min_distance_m = 0.22;
+  EXPECT_EQ(mmh::verifyTrajectory(line(), o).failed, VerifyCheck::kEscapeDeeper);
+}
+
 TEST_F(Verifier, MarginCellsTheStartStateFixesKeepTheEscapeDistance) {
   // Occupied at (0.35, 1.25): the path (y = 1.05) crosses margin cells for x in [0.2, 0.5]
   // (t in about [0.48, 0.8] s), never nearer to that cell's centre than 0.2 m.

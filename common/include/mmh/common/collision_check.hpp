@@ -44,6 +44,11 @@ inline bool keepsEscapeDistance(const VoxelGrid& grid, const Eigen::Vector3d& p,
   return occupiedDistance(grid, p, min_distance_m) >= min_distance_m - tolerance_m;
 }
 
+// A start inside the margin may leave it anywhere within radius_m of the start (keeping the
+// escape distance): the escape zone lasts until the trajectory's first sample (every step_s)
+// farther than that from its start, or its end.
+double escapeZoneEnd(const Trajectory& traj, double radius_m, double step_s);
+
 // The first forced_until_s of a trajectory are fixed by its start state: no plan can leave the way
 // the start carries the vehicle by more than a few centimetres (EamParams::start_forced_s). A
 // sample there in the inflated margin (not in an occupied cell: the caller's check) is no

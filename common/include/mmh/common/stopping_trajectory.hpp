@@ -22,13 +22,17 @@ Trajectory makeStoppingTrajectory(const KinematicState& start, double max_acc_mp
 Trajectory makeStoppingTrajectory(const Trajectory& path, double t0, double max_acc_mps2,
                                   double max_vel_mps);
 
+// Below this share of the top speed a slowdown is not made (makeSlowdownTrajectory).
+constexpr double kMinSlowdownRatio = 0.1;
+
 // Slows down along the path of `path` from its time t0 so that, after a smooth transition, no
 // point of the rest of the path is flown faster than max_speed_mps: the same curve, re-timed by a
 // factor that falls smoothly from 1 to max_speed_mps / (path's top speed after t0), fitted with
 // minimum-jerk pieces; it ends where the path ends, at rest. What the arbiter commits when the
 // speed it allows falls below the committed trajectory's (answers come late). Empty when the
 // path is already slow enough (its top speed after t0 within max_speed_mps x (1 + tolerance)),
-// or too short to slow down on (then stop instead).
+// too short to slow down on, or max_speed_mps is below kMinSlowdownRatio of that top speed (then
+// stop instead).
 Trajectory makeSlowdownTrajectory(const Trajectory& path, double t0, double max_speed_mps,
                                   double max_acc_mps2, double tolerance = 0.0);
 

@@ -92,9 +92,10 @@ struct ArbiterCounters {
   int not_committed_stale_odom = 0;  // verified answers dropped because ODOMETRY was stale
   int unreachable_goals = 0;         // times a goal was given up for lack of progress
   int back_offs = 0;                 // rounds that backed off to free space while stuck
-  int slowdowns = 0;         // committed trajectories slowed to the latency budget's speed limit
-  int degraded_periods = 0;  // times the latency budget became degraded
-  int moved_goals = 0;       // goals moved out of an obstacle's margin
+  int slowdowns = 0;  // committed trajectories slowed to the latency budget's speed limit
+  int failed_round_slowdowns = 0;  // ... slowed because every mode failed with danger ahead
+  int degraded_periods = 0;        // times the latency budget became degraded
+  int moved_goals = 0;             // goals moved out of an obstacle's margin
   int kept_trajectories =
       0;  // halfway answers not taken: the committed one reaches the goal sooner
 };
@@ -162,6 +163,10 @@ class Arbiter {
     // Kept over a later halfway answer (replan_rules.hpp, keepsCommitted): its next replan point.
     std::optional<int64_t> kept_replan_utime;
     double bound_s = 0.0;  // restToRestTime of its straight length
+    // Started inside the check margin: the escape accepted at commit lasts until escape_until_s
+    // and must keep escape_min_distance_m from the occupied cells (answer_check.hpp).
+    double escape_until_s = 0.0;
+    double escape_min_distance_m = 0.0;
   };
   // A planning round in flight: requests sent, answers collected until all came or the deadline.
   struct Round {
@@ -208,8 +213,12 @@ class Arbiter {
   void onStaleOdometry(int64_t now);
   // After a failed round, and while recovering: commits the stop for the danger ahead once it
   // cannot wait any longer (shouldStop, StopCause::kNoUsableAnswer).
-  // The decision's detail names the danger, then `notes` (what the modes said).
-  void stopIfNoTimeLeft(int64_t now, bool by_deadline, const std::string& notes, Trigger trigger);
+  // The decision's detail names the danger, then `notes` (what the modes said). True when danger
+  // is ahead and the stop can still wait.
+  bool stopIfNoTimeLeft(int64_t now, bool by_deadline, const std::string& notes, Trigger trigger);
+  // Every mode failed with danger ahead and the stop can wait: slow the committed trajectory
+  // along its path to failed_round_speed_ratio of its speed, if that meets nothing sooner.
+  void slowDownAfterFailedRound(int64_t now, Trigger trigger);
   // A stop begun stop_decision_margin_s later would still end clear of the known obstacles.
   bool stopCanWait(int64_t now) const;
   // The stop (chooseStoppingTrajectory) that leaves the committed trajectory t0_s into it.
@@ -218,6 +227,11 @@ class Arbiter {
   // round comes next whatever the old round decided).
   void enterPhase(Phase phase);
   bool collisionAhead(int64_t now) const;
+  // First time in [from_s, to_s] at which the committed trajectory collides with the map; its
+  // accepted escape from a start in the margin only when it enters an occupied cell or comes
+  // nearer to the occupied cells than the start did. Else a repair round would be asked for the
+  // escape itself, fail from the margin, and stop the vehicle there round after round.
+  std::optional<double> committedCollisionTime(double from_s, double to_s) const;
   // Nearer than this to an occupied cell's centre, the airframe enters the cell.
   double stopTouchDistance() const;
   // A collision ahead that needs a round now (collisionNeedsRoundNow); *eta_s until it is hit.

@@ -103,6 +103,9 @@ struct ArbiterParams {
   // With danger ahead and no usable answer, the stop waits while one begun this much later would
   // still end clear of the known obstacles (0: stop at once).
   double stop_decision_margin_s = 0.5;
+  // ... and while it waits, each such round slows the committed trajectory along its path to this
+  // share of its speed (1: off), so that the next rounds start slower.
+  double failed_round_speed_ratio = 0.7;
   double braking_speed_mps = 0.1;  // a committed stop faster than this still brakes
   // The stuck detector (progress_monitor.hpp, stuckResponse).
   double progress_min_step_m = 0.5;     // progress: this much nearer to the goal than ever before
