@@ -682,9 +682,6 @@ void Arbiter::slowDownAfterFailedRound(int64_t now, Trigger trigger) {
   const double t0 = (start - committed_.start_utime) * kUs;
   if (t0 >= path.duration()) return;
   const double speed = path.velocity(t0).norm();
-  // Slower than this, the next rounds start slow enough; slowing on would only crawl.
-  constexpr double kMinSpeedMps = 0.5;
-  if (ratio * speed < kMinSpeedMps) return;
   const Trajectory slow = makeSlowdownTrajectory(path, t0, ratio * speed, params_.max_acc_mps2);
   if (slow.empty()) return;
   // The same path re-timed meets the danger where the committed trajectory does, only later;
