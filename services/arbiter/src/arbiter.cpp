@@ -701,7 +701,7 @@ void Arbiter::slowDownAfterFailedRound(int64_t now, Trigger trigger) {
   d.committed_mode = committed_.mode;
   d.trajectory_id = commit_->trajectory_id;
   d.local_target = slow.position(slow.duration());
-  // Braking is the first answer to the danger; the plan round it comes later.
+  // The slowdown is the first answer to the danger; the plan that avoids it comes later.
   d.threat_seen_utime = std::exchange(threat_seen_utime_, std::nullopt).value_or(0);
   char text[96];
   std::snprintf(text, sizeof(text),
