@@ -71,7 +71,9 @@ struct VerifierOptions {
   bool check_inflated = true;  // false: only the occupied layer (SOM: its corridor does the rest)
   // Escape from a start inside the inflated margin: no sample of it nearer to the occupied cells
   // than escape_min_distance_m (less escape_depth_tol_m) and, kPerPiece, none further than
-  // escape_radius_m from the start position; kTimeSteps, the walk must leave the margin there.
+  // escape_radius_m from the start position; kTimeSteps, every sample in the margin within
+  // escape_radius_m of the start keeps that distance (escapeZoneEnd), and the first beyond it
+  // is out of the margin.
   double escape_min_distance_m = 0.0;
   double escape_depth_tol_m = kEscapeDepthTolerance;
   double escape_radius_m = std::numeric_limits<double>::infinity();
