@@ -66,4 +66,15 @@ double escapeZoneEnd(const Trajectory& traj, double radius_m, double step_s) {
   return traj.duration();
 }
 
+std::optional<double> firstEscapeTooDeep(const VoxelGrid& grid, const Trajectory& traj, double t0,
+                                         double t1, double step_s, double min_distance_m,
+                                         double tolerance_m) {
+  for (double t = t0; t < t1; t += step_s) {
+    const Eigen::Vector3d p = traj.position(t);
+    if (isPointBlocked(grid, p) && !keepsEscapeDistance(grid, p, min_distance_m, tolerance_m))
+      return t;
+  }
+  return std::nullopt;
+}
+
 }  // namespace mmh

@@ -177,16 +177,12 @@ bool checkTimeSteps(const Trajectory& t, const VerifierOptions& o, VerifyResult&
     // while the point itself is farther: the cells are coarser than the way out) as long as it
     // never comes nearer than the start.
     const double zone_end = escapeZoneEnd(t, o.escape_radius_m, o.escape_step_s);
-    for (; clear_from < zone_end; clear_from += o.escape_step_s) {
-      const Eigen::Vector3d p = t.position(clear_from);
-      if (isPointBlocked(grid, p) &&
-          !keepsEscapeDistance(grid, p, o.escape_min_distance_m, o.escape_depth_tol_m)) {
-        r.at_time = clear_from;
-        return fail(r, VerifyCheck::kEscapeDeeper, "goes deeper into the margin it starts in"),
-               false;
-      }
+    if (const auto deeper = firstEscapeTooDeep(grid, t, 0.0, zone_end, o.escape_step_s,
+                                               o.escape_min_distance_m, o.escape_depth_tol_m)) {
+      r.at_time = *deeper;
+      return fail(r, VerifyCheck::kEscapeDeeper, "goes deeper into the margin it starts in"), false;
     }
-    clear_from = std::min(zone_end, t.duration());
+    clear_from = zone_end;
     if (zone_end < t.duration() && isPointBlocked(grid, t.position(clear_from))) {
       r.at_time = clear_from;
       return fail(r, VerifyCheck::kEscapeTooFar, "does not leave the margin near its start"), false;

@@ -207,13 +207,10 @@ std::optional<double> Arbiter::committedCollisionTime(double from_s, double to_s
     if (const auto hit =
             firstCollisionTime(*grid_, t, from_s, escape_end, CollisionLayer::kOccupied))
       return hit;
-    for (double s = from_s; s < escape_end; s += params_.escape_step_s) {
-      const Eigen::Vector3d p = t.position(s);
-      if (isPointBlocked(*grid_, p) &&
-          !keepsEscapeDistance(*grid_, p, committed_.escape_min_distance_m,
-                               params_.escape_depth_tolerance_m))
-        return s;
-    }
+    if (const auto deeper =
+            firstEscapeTooDeep(*grid_, t, from_s, escape_end, params_.escape_step_s,
+                               committed_.escape_min_distance_m, params_.escape_depth_tolerance_m))
+      return deeper;
     from_s = escape_end;
   }
   return firstCollisionTime(*grid_, t, from_s, to_s);

@@ -34,9 +34,15 @@ Trajectory simplePlan(const KinematicState& start, const Vector3d& target) {
 
 class ArbiterRules : public ::testing::Test {
  protected:
-  ArbiterRules() : grid_(0.1, Vector3i(-160, -160, -8), Vector3i(320, 320, 40)) {
+  ArbiterRules() {
     params_.geofence_min_m = Vector3d(-30, -30, 0.3);
     params_.geofence_max_m = Vector3d(30, 30, 2.7);
+    clearGrid();
+  }
+
+  // An empty, fully mapped window around the origin.
+  void clearGrid() {
+    grid_ = mmh::VoxelGrid(0.1, Vector3i(-160, -160, -8), Vector3i(320, 320, 40));
     grid_.setInflationRadius(params_.check_inflation_m);
     for (int64_t i = 0; i < grid_.numCells(); ++i) grid_.setLinear(i, mmh::Occupancy::kFree);
   }
@@ -553,9 +559,7 @@ TEST_F(ArbiterRules, AFailedRoundWithAFarDangerSlowsTheCommittedPathWhileTheStop
   for (const double ratio : {1.0, 0.7}) {
     SCOPED_TRACE("ratio " + std::to_string(ratio));
     params_.failed_round_speed_ratio = ratio;
-    grid_ = mmh::VoxelGrid(0.1, Vector3i(-160, -160, -8), Vector3i(320, 320, 40));
-    grid_.setInflationRadius(params_.check_inflation_m);
-    for (int64_t i = 0; i < grid_.numCells(); ++i) grid_.setLinear(i, mmh::Occupancy::kFree);
+    clearGrid();
     auto a = started(Policy::kMmh);
     KinematicState before;
     const double t1 = cruiseIntoMappedPillar(*a, 7.0, &before);

@@ -48,6 +48,11 @@ inline bool keepsEscapeDistance(const VoxelGrid& grid, const Eigen::Vector3d& p,
 // escape distance): the escape zone lasts until the trajectory's first sample (every step_s)
 // farther than that from its start, or its end.
 double escapeZoneEnd(const Trajectory& traj, double radius_m, double step_s);
+// The escape's walk over [t0, t1) every step_s: the first sample inside the margin that does not
+// keep min_distance_m (keepsEscapeDistance), or nothing.
+std::optional<double> firstEscapeTooDeep(const VoxelGrid& grid, const Trajectory& traj, double t0,
+                                         double t1, double step_s, double min_distance_m,
+                                         double tolerance_m);
 
 // The first forced_until_s of a trajectory are fixed by its start state: no plan can leave the way
 // the start carries the vehicle by more than a few centimetres (EamParams::start_forced_s). A
