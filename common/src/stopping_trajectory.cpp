@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -147,10 +148,17 @@ Trajectory fadingStraightPath(const KinematicState& start, double max_acc_mps2) 
   return Trajectory({bend, run});
 }
 
+// How far aside of the straight stop's end the stops that swerve end.
+constexpr double kSwerveAsideM[] = {0.2, 0.4, 0.6, 0.8, 1.0};
+
 // The straight stop from nearly at rest, or when braking along the faded path does not fit: three
 // minimum-jerk pieces whose junctions follow a constant deceleration, lengthened until the exact
-// maxima fit the limits.
-Trajectory stopInThreePieces(const KinematicState& start, double max_acc_mps2, double max_vel_mps) {
+// maxima fit the limits. With `aside`, a stop that swerves: six pieces whose junctions also move
+// smoothly (3u^2 - 2u^3) to that offset from the straight line, over the first aside_share of the
+// stop's time.
+Trajectory stopInPieces(const KinematicState& start, double max_acc_mps2, double max_vel_mps,
+                        const Eigen::Vector3d& aside = Eigen::Vector3d::Zero(),
+                        double aside_share = 1.0) {
   const double speed = start.velocity.norm();
   const Eigen::Vector3d dir =
       speed > 1e-6 ? Eigen::Vector3d(start.velocity / speed) : Eigen::Vector3d::Zero();
@@ -166,13 +174,16 @@ Trajectory stopInThreePieces(const KinematicState& start, double max_acc_mps2, d
     Eigen::Matrix3d head, tail;
     head << start.position, start.velocity, start.acceleration;
     const double stop_dist = 0.5 * speed * total;
-    tail << start.position + dir * stop_dist, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero();
-    const int pieces = 3;
+    tail << start.position + dir * stop_dist + aside, Eigen::Vector3d::Zero(),
+        Eigen::Vector3d::Zero();
+    const int pieces = aside.isZero() ? 3 : 6;
     minco.setConditions(head, tail, pieces);
     Eigen::Matrix3Xd inner(3, pieces - 1);
     for (int i = 1; i < pieces; ++i) {
       const double t = total * i / pieces;
-      inner.col(i - 1) = start.position + dir * (speed * t - 0.5 * decel * t * t);
+      const double u = std::min(1.0, static_cast<double>(i) / pieces / aside_share);
+      inner.col(i - 1) = start.position + dir * (speed * t - 0.5 * decel * t * t) +
+                         aside * (u * u * (3.0 - 2.0 * u));
     }
     minco.setParameters(inner, Eigen::VectorXd::Constant(pieces, total / pieces));
     Trajectory stop = minco.trajectory();
@@ -202,7 +213,7 @@ Trajectory makeStoppingTrajectory(const KinematicState& start, double max_acc_mp
             brakeAlong(fadingStraightPath(start, max_acc_mps2), 0.0, max_acc_mps2, max_vel_mps))
       return *stop;
   }
-  return stopInThreePieces(start, max_acc_mps2, max_vel_mps);
+  return stopInPieces(start, max_acc_mps2, max_vel_mps);
 }
 
 Trajectory makeStoppingTrajectory(const Trajectory& path, double t0, double max_acc_mps2,
@@ -267,6 +278,11 @@ constexpr double kUnknownTolerance_m = 0.1;
 // ratio of the straight stop's length the straight one is taken when it is as clear.
 constexpr double kMuchLongerStop = 1.3;
 
+// Keeps clearance_m from the occupied cells' centres through known space (kUnknownTolerance_m).
+bool isClear(const StopAssessment& seen, double clearance_m) {
+  return seen.clearance_m >= clearance_m && seen.unknown_m <= kUnknownTolerance_m;
+}
+
 }  // namespace
 
 StopAssessment assessStop(const VoxelGrid& grid, const Trajectory& stop, double limit_m) {
@@ -300,22 +316,66 @@ bool saferStop(const StopAssessment& a, const StopAssessment& b, double touch_m)
   return a.clearance_m > b.clearance_m;
 }
 
+std::optional<Trajectory> firstSwervingStop(const KinematicState& start, double max_acc_mps2,
+                                            double max_vel_mps,
+                                            const std::function<bool(const Trajectory&)>& accept) {
+  const double speed = start.velocity.norm();
+  if (speed <= kNearlyAtRestMps) return std::nullopt;
+  const Eigen::Vector3d ahead = start.velocity / speed;
+  Eigen::Vector3d left(-ahead.y(), ahead.x(), 0.0);        // horizontal, square to the motion
+  if (left.norm() < 0.1) left = Eigen::Vector3d::UnitY();  // flying nearly straight up or down
+  left.normalize();
+  const double speed_limit = std::max(max_vel_mps, speed);
+  const double acc_limit = accelerationLimit(start, max_acc_mps2);
+  for (double aside_m : kSwerveAsideM) {
+    for (double sign : {1.0, -1.0}) {
+      for (double share : {0.5, 0.75, 1.0}) {
+        Trajectory stop =
+            stopInPieces(start, max_acc_mps2, max_vel_mps, sign * aside_m * left, share);
+        if (stop.maxAcceleration() <= acc_limit && stop.maxSpeed() <= speed_limit * 1.0001 &&
+            accept(stop))
+          return stop;
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+std::vector<Trajectory> makeSwervingStops(const KinematicState& start, double max_acc_mps2,
+                                          double max_vel_mps) {
+  std::vector<Trajectory> stops;
+  firstSwervingStop(start, max_acc_mps2, max_vel_mps, [&](const Trajectory& stop) {
+    stops.push_back(stop);
+    return false;
+  });
+  return stops;
+}
+
+bool isClearStop(const VoxelGrid& grid, const Trajectory& stop, double clearance_m) {
+  return isClear(assessStop(grid, stop, clearance_m + 0.1), clearance_m) &&
+         !firstCollisionTime(grid, stop, 0.0, stop.duration());
+}
+
 Trajectory chooseStoppingTrajectory(const VoxelGrid* grid, const Trajectory& path, double t0,
                                     double max_acc_mps2, double max_vel_mps, double clearance_m,
-                                    double touch_m) {
+                                    double touch_m, bool may_swerve) {
   Trajectory along = makeStoppingTrajectory(path, t0, max_acc_mps2, max_vel_mps);
   if (!grid || !grid->valid()) return along;
-  const double limit = clearance_m + 0.1;
-  auto clear = [&](const StopAssessment& a) {
-    return a.clearance_m >= clearance_m && a.unknown_m <= kUnknownTolerance_m;
-  };
-  const StopAssessment along_seen = assessStop(*grid, along, limit);
   Trajectory straight = makeStoppingTrajectory(path.state(t0), max_acc_mps2, max_vel_mps);
-  if (clear(along_seen)) {
+  if (isClearStop(*grid, along, clearance_m)) {
     if (along.arcLength() <= kMuchLongerStop * straight.arcLength()) return along;
-    return clear(assessStop(*grid, straight, limit)) ? straight : along;
+    return isClearStop(*grid, straight, clearance_m) ? straight : along;
   }
-  return saferStop(assessStop(*grid, straight, limit), along_seen, touch_m) ? straight : along;
+  const double limit = clearance_m + 0.1;
+  const StopAssessment along_seen = assessStop(*grid, along, limit);
+  const StopAssessment straight_seen = assessStop(*grid, straight, limit);
+  if (may_swerve && !isClearStop(*grid, straight, clearance_m)) {
+    if (auto swerve = firstSwervingStop(
+            path.state(t0), max_acc_mps2, max_vel_mps,
+            [&](const Trajectory& stop) { return isClearStop(*grid, stop, clearance_m); }))
+      return *swerve;
+  }
+  return saferStop(straight_seen, along_seen, touch_m) ? straight : along;
 }
 
 }  // namespace mmh

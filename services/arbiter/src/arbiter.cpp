@@ -220,10 +220,10 @@ double Arbiter::stopTouchDistance() const {
   return params_.vehicle_radius_m + (grid_ ? 0.5 * grid_->resolution() : 0.0);
 }
 
-Trajectory Arbiter::stopAlongCommitted(double t0_s) const {
+Trajectory Arbiter::stopAlongCommitted(double t0_s, bool may_swerve) const {
   return chooseStoppingTrajectory(grid_, committed_.trajectory, t0_s, params_.max_acc_mps2,
                                   params_.max_vel_mps, params_.check_inflation_m,
-                                  stopTouchDistance());
+                                  stopTouchDistance(), may_swerve);
 }
 
 bool Arbiter::stopCanWait(int64_t now) const {
@@ -235,11 +235,12 @@ bool Arbiter::stopCanWait(int64_t now) const {
   if (committedCollisionTime(std::max(0.0, (now - committed_.start_utime) * kUs), later_s)) {
     return false;
   }
-  const Trajectory later_stop = stopAlongCommitted(later_s);
+  // Only a stop that brakes counts: waiting is no reason to swerve farther.
+  const Trajectory later_stop = stopAlongCommitted(later_s, false);
   if (firstCollisionTime(*grid_, later_stop, 0.0, later_stop.duration())) return false;
   // Nor may waiting carry the stop farther into unmapped space than a stop now would go.
   const Trajectory stop_now =
-      stopAlongCommitted((now - committed_.start_utime) * kUs + budget_.replan_lead_s);
+      stopAlongCommitted((now - committed_.start_utime) * kUs + budget_.replan_lead_s, false);
   const double limit_m = params_.check_inflation_m;
   return assessStop(*grid_, later_stop, limit_m).unknown_m <=
          assessStop(*grid_, stop_now, limit_m).unknown_m + grid_->resolution();
@@ -525,10 +526,12 @@ void Arbiter::commit(const Trajectory& trajectory, int64_t start_utime, Mode mod
   ++counters_.commits;
 }
 
-void Arbiter::commitStop(int64_t now, const std::string& why, Trigger trigger) {
+void Arbiter::commitStop(int64_t now, const std::string& why, Trigger trigger,
+                         const Trajectory* given) {
   const int64_t start = now + static_cast<int64_t>(budget_.replan_lead_s * 1e6);
   const Trajectory stop =
-      hasCommitted()
+      given ? *given
+      : hasCommitted()
           ? stopAlongCommitted((start - committed_.start_utime) * kUs)
           : makeStoppingTrajectory(stateAt(start), params_.max_acc_mps2, params_.max_vel_mps);
   commit(stop, start, Mode::kStop, false);
@@ -645,8 +648,11 @@ void Arbiter::decide(int64_t now, bool by_deadline) {
   d.detail = notes;
   last_failure_notes_ = notes;
   pushDecision(d);
-  if (stopIfNoTimeLeft(now, by_deadline, notes, round.trigger))
+  if (stopIfNoTimeLeft(now, by_deadline, notes, round.trigger)) {
     slowDownAfterFailedRound(now, round.trigger);
+  } else {
+    swerveIfStopMeetsObstacle(now, notes, round.trigger);
+  }
 }
 
 bool Arbiter::stopIfNoTimeLeft(int64_t now, bool by_deadline, const std::string& notes,
@@ -668,6 +674,22 @@ bool Arbiter::stopIfNoTimeLeft(int64_t now, bool by_deadline, const std::string&
                  (obstacle ? "danger ahead: " : "unmapped space within stopping reach: ") + notes,
              trigger);
   return false;
+}
+
+void Arbiter::swerveIfStopMeetsObstacle(int64_t now, const std::string& notes, Trigger trigger) {
+  if (!hasCommitted() || committed_.mode != Mode::kStop || commit_ || round_ ||
+      !collisionAhead(now))
+    return;
+  const int64_t start = now + static_cast<int64_t>(budget_.replan_lead_s * 1e6);
+  const double t0 = (start - committed_.start_utime) * kUs;
+  if (t0 >= committed_.trajectory.duration()) return;
+  // Braking along the stop under way, or straight, meets the obstacle as the stop does: only a
+  // stop clear of it is worth committing; else the modes go on trying.
+  const Trajectory stop = stopAlongCommitted(t0);
+  if (!isClearStop(*grid_, stop, params_.check_inflation_m)) return;
+  ++counters_.swerving_stops;
+  commitStop(now, "the stop under way meets a newly mapped obstacle: swerving round it; " + notes,
+             trigger, &stop);
 }
 
 void Arbiter::slowDownAfterFailedRound(int64_t now, Trigger trigger) {

@@ -450,34 +450,69 @@ TEST_F(ArbiterRules, AStopAfterAFailedRoundAnswersTheDangerThatRoundWasFor) {
 }
 
 TEST_F(ArbiterRules, AnObstacleMappedOnABrakingStopIsAnsweredOnThatMap) {
-  auto a = started(Policy::kMmh);
-  KinematicState before;
-  const double t1 = cruiseIntoMappedPillar(*a, 2.5, &before);
-  // Every mode fails: the vehicle brakes in a stop.
-  std::optional<CommitOut> stop;
-  double t = t1;
-  for (auto requests = a->takeRequests(); !stop && t < t1 + 1.0;) {
-    for (auto& r : requests) a->onAnswer(failedAnswer(r), at(t + 0.001));
-    stop = a->takeCommit();
-    t += 0.01;
-    if (!stop) requests = fly(*a, t, t);
+  // A pillar beside the stop's way, then a wall across it: none of the stops that swerve is clear
+  // of the wall.
+  for (const bool wall : {false, true}) {
+    SCOPED_TRACE(wall ? "wall" : "pillar");
+    clearGrid();
+    auto a = started(Policy::kMmh);
+    KinematicState before;
+    const double t1 = cruiseIntoMappedPillar(*a, 2.5, &before);
+    // Every mode fails: the vehicle brakes in a stop.
+    std::optional<CommitOut> stop;
+    double t = t1;
+    for (auto requests = a->takeRequests(); !stop && t < t1 + 1.0;) {
+      for (auto& r : requests) a->onAnswer(failedAnswer(r), at(t + 0.001));
+      stop = a->takeCommit();
+      t += 0.01;
+      if (!stop) requests = fly(*a, t, t);
+    }
+    ASSERT_TRUE(stop.has_value());
+    ASSERT_EQ(stop->mode, Mode::kStop);
+    a->takeDecisions();
+    // A map 50 ms later shows an obstacle on the stop's own way, well within the retry period.
+    ASSERT_LT(0.1, params_.stop_retry_period_s);
+    const Trajectory& braking = stop->trajectory;
+    const Vector3d ahead = braking.position(0.6 * braking.duration());
+    if (wall) {
+      for (double y = -4.0; y <= 4.0; y += 0.1) putPillar(ahead.x(), y, 0.1);
+    } else {
+      putPillar(ahead.x(), ahead.y() + 0.3, 0.2);
+    }
+    const double t2 = t + 0.05;
+    const int64_t now = at(t2);
+    const double elapsed = (now - stop->start_utime) * 1e-6;
+    ASSERT_TRUE(mmh::firstCollisionTime(grid_, braking, elapsed, braking.duration()));
+    a->onOdometry(braking.state(elapsed), now);
+    a->onMapUpdated(grid_, ++map_seq_, now, now);
+    // Only an evasive plan can help: a round on this map, not after the retry period.
+    auto round = a->takeRequests();
+    ASSERT_EQ(round.size(), 1u);
+    // It fails: a stop that swerves round the pillar is committed at once, on this map.
+    a->onAnswer(failedAnswer(round[0]), now + 1000);
+    auto swerve = a->takeCommit();
+    if (wall) {
+      EXPECT_FALSE(swerve.has_value());  // nothing clear to commit: the modes go on trying
+      EXPECT_EQ(a->counters().swerving_stops, 0);
+      continue;
+    }
+    ASSERT_TRUE(swerve.has_value());
+    EXPECT_EQ(swerve->mode, Mode::kStop);
+    EXPECT_EQ(a->counters().swerving_stops, 1);
+    const Trajectory& st = swerve->trajectory;
+    EXPECT_FALSE(mmh::firstCollisionTime(grid_, st, 0.0, st.duration()).has_value());
+    EXPECT_TRUE(mmh::isClearStop(grid_, st, params_.check_inflation_m));
+    const KinematicState from = braking.state((swerve->start_utime - stop->start_utime) * 1e-6);
+    EXPECT_LT((st.position(0.0) - from.position).norm(), 1e-6);
+    EXPECT_LT((st.velocity(0.0) - from.velocity).norm(), 1e-6);
+    EXPECT_LT(st.velocity(st.duration()).norm(), 1e-6);
+    EXPECT_LE(st.maxAcceleration(), params_.max_acc_mps2 * 1.001);
+    const auto decisions = a->takeDecisions();
+    ASSERT_FALSE(decisions.empty());
+    EXPECT_EQ(decisions.back().outcome, Outcome::kStopping);
+    EXPECT_NE(decisions.back().detail.find("swerving"), std::string::npos);
+    EXPECT_EQ(decisions.back().threat_seen_utime, now);  // the danger's answer, on its own map
   }
-  ASSERT_TRUE(stop.has_value());
-  ASSERT_EQ(stop->mode, Mode::kStop);
-  a->takeDecisions();
-  // A map 50 ms later shows an obstacle on the stop's own way, well within the retry period.
-  ASSERT_LT(0.1, params_.stop_retry_period_s);
-  const Trajectory& braking = stop->trajectory;
-  const Vector3d ahead = braking.position(0.6 * braking.duration());
-  putPillar(ahead.x(), ahead.y() + 0.3, 0.2);
-  const double t2 = t + 0.05;
-  const int64_t now = at(t2);
-  ASSERT_TRUE(mmh::firstCollisionTime(grid_, braking, (now - stop->start_utime) * 1e-6,
-                                      braking.duration()));
-  a->onOdometry(braking.state((now - stop->start_utime) * 1e-6), now);
-  a->onMapUpdated(grid_, ++map_seq_, now, now);
-  // Only an evasive plan can help: a round on this map, not after the retry period.
-  EXPECT_EQ(a->takeRequests().size(), 1u);
 }
 
 TEST_F(ArbiterRules, ADangerThatANewMapNoLongerShowsIsAnsweredByNoLaterCommit) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "mmh/common/collision_check.hpp"
 #include "mmh/common/minco.hpp"
 #include "mmh/common/stopping_trajectory.hpp"
 
@@ -270,6 +271,71 @@ TEST(StoppingTrajectory, SaferStopOrdersTouchThenUnknownThenClearance) {
   EXPECT_TRUE(saferStop(known_far, known_near, kTouch));
   EXPECT_FALSE(saferStop(known_near, known_far, kTouch));
   EXPECT_TRUE(saferStop(StopAssessment{0.18, 0.0}, touching, kTouch));  // both touch: clearance
+}
+
+// Every stop that swerves starts exactly in the given state, ends at rest beside the straight
+// stop's end, keeps a_max and v_max, and they come ordered from the least swerve to the most.
+TEST(StoppingTrajectory, SwervingStopsEndAtRestBesideTheStraightStopWithinTheLimits) {
+  mmh::KinematicState s;
+  s.position = Eigen::Vector3d(1, 2, 1.2);
+  s.velocity = Eigen::Vector3d(2.4, 1.8, 0.0);  // 3 m/s
+  s.acceleration = Eigen::Vector3d(-0.6, 0.8, 0.0);
+  const std::vector<mmh::Trajectory> stops = mmh::makeSwervingStops(s, 2.0, 3.0);
+  ASSERT_GE(stops.size(), 10u);
+  const Eigen::Vector3d ahead = s.velocity.normalized();
+  double previous_aside = 0.0;
+  int left = 0, right = 0;
+  for (const mmh::Trajectory& stop : stops) {
+    EXPECT_LT((stop.position(0.0) - s.position).norm(), 1e-9);
+    EXPECT_LT((stop.velocity(0.0) - s.velocity).norm(), 1e-9);
+    EXPECT_LT((stop.acceleration(0.0) - s.acceleration).norm(), 1e-9);
+    EXPECT_LT(stop.velocity(stop.duration()).norm(), 1e-9);
+    EXPECT_LT(stop.acceleration(stop.duration()).norm(), 1e-9);
+    EXPECT_LE(stop.maxAcceleration(), 2.0 * (1.0 + 1e-6));
+    EXPECT_LE(stop.maxSpeed(), 3.0 * 1.0001);
+    const Eigen::Vector3d end = stop.position(stop.duration()) - s.position;
+    EXPECT_NEAR(end.z(), 0.0, 1e-9);  // in the horizontal plane
+    EXPECT_GT(end.dot(ahead), 2.25);  // past the bang-bang stop (v^2 / 2 a_max)
+    const double aside = ahead.x() * end.y() - ahead.y() * end.x();
+    EXPECT_GE(std::abs(aside), previous_aside - 1e-9);
+    EXPECT_LE(std::abs(aside), 1.0 + 1e-9);
+    previous_aside = std::abs(aside);
+    (aside > 0.0 ? left : right) += 1;
+  }
+  EXPECT_GT(left, 0);
+  EXPECT_GT(right, 0);
+  EXPECT_TRUE(mmh::makeSwervingStops(mmh::KinematicState{}, 2.0, 3.0).empty());  // at rest
+}
+
+// A newly mapped pillar stands beside the straight path where every stop that brakes along it (or
+// straight) would come within its margin: the chosen stop swerves away from it, clear of its
+// margin and of the check that found it, and within the limits. With the pillar farther, the
+// stop brakes straight.
+TEST(StoppingTrajectory, SwervesWhenNoStopThatBrakesIsClear) {
+  const mmh::Trajectory path = steadyPath(3.0, 0.0);  // along x at 3 m/s from (0, 0, 1.2)
+  const mmh::Trajectory straight = mmh::makeStoppingTrajectory(path, 0.5, 2.0, 3.0);
+  const double stop_end_x = straight.position(straight.duration()).x();
+  const mmh::VoxelGrid pillar = gridWithPillar(stop_end_x - 0.3, 0.2, 0.2);
+  ASSERT_TRUE(mmh::firstCollisionTime(pillar, straight, 0.0, straight.duration()));
+
+  const mmh::Trajectory chosen =
+      mmh::chooseStoppingTrajectory(&pillar, path, 0.5, 2.0, 3.0, 0.25, kTouch);
+  EXPECT_TRUE(mmh::isClearStop(pillar, chosen, 0.25));
+  EXPECT_FALSE(mmh::firstCollisionTime(pillar, chosen, 0.0, chosen.duration()));
+  EXPECT_GE(mmh::minOccupiedDistance(pillar, chosen, 1.0), 0.25);
+  EXPECT_LT((chosen.state(0.0).velocity - path.velocity(0.5)).norm(), 1e-9);
+  EXPECT_LT(chosen.velocity(chosen.duration()).norm(), 1e-9);
+  EXPECT_LE(chosen.maxAcceleration(), 2.0 * (1.0 + 1e-6));
+  EXPECT_LT(chosen.position(chosen.duration()).y(), -0.1);  // away from the pillar
+  const mmh::Trajectory braking =
+      mmh::chooseStoppingTrajectory(&pillar, path, 0.5, 2.0, 3.0, 0.25, kTouch, false);
+  EXPECT_NEAR(braking.position(braking.duration()).y(), 0.0, 1e-9);  // not asked to swerve
+
+  const mmh::VoxelGrid far = gridWithPillar(stop_end_x + 2.0, 0.0, 0.2);
+  const mmh::Trajectory braked =
+      mmh::chooseStoppingTrajectory(&far, path, 0.5, 2.0, 3.0, 0.25, kTouch);
+  EXPECT_LT((braked.position(braked.duration()) - straight.position(straight.duration())).norm(),
+            1e-9);
 }
 
 namespace {

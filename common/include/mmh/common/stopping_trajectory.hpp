@@ -4,6 +4,10 @@
 // its watchdog trips.
 #pragma once
 
+#include <functional>
+#include <optional>
+#include <vector>
+
 #include "mmh/common/trajectory.hpp"
 #include "mmh/common/voxel_grid.hpp"
 
@@ -49,16 +53,34 @@ StopAssessment assessStop(const VoxelGrid& grid, const Trajectory& stop, double 
 // space (where any obstacle may stand) wins, then the one with more clearance.
 bool saferStop(const StopAssessment& a, const StopAssessment& b, double touch_m);
 
+// Stops that swerve: from `start` to rest at points beside the straight stop's end (left and
+// right in the horizontal plane, 0.2 to 1 m aside), the straight stop's three minimum-jerk pieces
+// with their junctions moved smoothly aside, the shortest within a_max and max_vel_mps; ordered
+// from the least swerve to the most. Empty when the start is nearly at rest.
+std::vector<Trajectory> makeSwervingStops(const KinematicState& start, double max_acc_mps2,
+                                          double max_vel_mps);
+// The first of those stops, in the same order, that `accept` takes; built one by one, so that a
+// clear one found early costs little.
+std::optional<Trajectory> firstSwervingStop(const KinematicState& start, double max_acc_mps2,
+                                            double max_vel_mps,
+                                            const std::function<bool(const Trajectory&)>& accept);
+
+// Whether a stop keeps clearance_m from the occupied cells' centres of `grid`, runs through known
+// space only (a few centimetres of unknown excepted) and passes firstCollisionTime on the grid's
+// inflated cells (the arbiter's check of the committed trajectory).
+bool isClearStop(const VoxelGrid& grid, const Trajectory& stop, double clearance_m);
+
 // The stop to commit when `path` is to be left at t0 (danger ahead on it): braking along it, so
-// that an avoidance under way is kept, if that stays clearance_m from the occupied cells of
-// `grid` through known space; but the straight stop from the same state if that is as clear and
-// the one along the path runs much farther (a bend flown near a_max leaves little to brake
-// with); else the safer (saferStop) of the two. Braking along a path that bends into the
-// obstacle it is stopped for can reach it; the straight stop can run into unknown space that the
-// path never crossed. Without a grid, braking along the path.
+// that an avoidance under way is kept, if that stays clear (isClearStop); but the straight stop
+// from the same state if that is as clear and the one along the path runs much farther (a bend
+// flown near a_max leaves little to brake with). When neither is clear, the first clear stop that
+// swerves (firstSwervingStop), if may_swerve; else the safer (saferStop) of the two that brake.
+// Braking along a path that bends into the obstacle it is stopped for can reach it; the straight
+// stop can run into unknown space that the path never crossed; a newly mapped obstacle may stand on
+// both. Without a grid, braking along the path.
 Trajectory chooseStoppingTrajectory(const VoxelGrid* grid, const Trajectory& path, double t0,
                                     double max_acc_mps2, double max_vel_mps, double clearance_m,
-                                    double touch_m);
+                                    double touch_m, bool may_swerve = true);
 
 // Least distance of the trajectory to the occupied cells' centres (sampled 1 cm apart at most),
 // at most limit_m.

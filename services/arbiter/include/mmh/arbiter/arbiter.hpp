@@ -94,8 +94,9 @@ struct ArbiterCounters {
   int back_offs = 0;                 // rounds that backed off to free space while stuck
   int slowdowns = 0;  // committed trajectories slowed to the latency budget's speed limit
   int failed_round_slowdowns = 0;  // ... slowed because every mode failed with danger ahead
-  int degraded_periods = 0;        // times the latency budget became degraded
-  int moved_goals = 0;             // goals moved out of an obstacle's margin
+  int swerving_stops = 0;    // stops under way replaced by one that swerves round a new obstacle
+  int degraded_periods = 0;  // times the latency budget became degraded
+  int moved_goals = 0;       // goals moved out of an obstacle's margin
   int kept_trajectories =
       0;  // halfway answers not taken: the committed one reaches the goal sooner
 };
@@ -208,8 +209,13 @@ class Arbiter {
   int64_t committedReplanUtime() const;
   std::optional<double> repairedReplanPointS() const;
   std::optional<double> keptReplanPointS() const;
-  // Commits a stopping trajectory; every caller has asked shouldStop() first.
-  void commitStop(int64_t now, const std::string& why, Trigger trigger);
+  // Commits a stopping trajectory (the one given, else stopAlongCommitted from the replan lead);
+  // every caller has asked shouldStop() first.
+  void commitStop(int64_t now, const std::string& why, Trigger trigger,
+                  const Trajectory* stop = nullptr);
+  // The stop under way meets a newly mapped obstacle and every mode failed: commit a stop from
+  // the replan lead that is clear of it (one that swerves, chooseStoppingTrajectory), if any.
+  void swerveIfStopMeetsObstacle(int64_t now, const std::string& notes, Trigger trigger);
   void onStaleOdometry(int64_t now);
   // After a failed round, and while recovering: commits the stop for the danger ahead once it
   // cannot wait any longer (shouldStop, StopCause::kNoUsableAnswer).
@@ -221,8 +227,9 @@ class Arbiter {
   void slowDownAfterFailedRound(int64_t now, Trigger trigger);
   // A stop begun stop_decision_margin_s later would still end clear of the known obstacles.
   bool stopCanWait(int64_t now) const;
-  // The stop (chooseStoppingTrajectory) that leaves the committed trajectory t0_s into it.
-  Trajectory stopAlongCommitted(double t0_s) const;
+  // The stop (chooseStoppingTrajectory) that leaves the committed trajectory t0_s into it; one
+  // that swerves only if may_swerve.
+  Trajectory stopAlongCommitted(double t0_s, bool may_swerve = true) const;
   // Sets the phase after a round's decision or a stop, unless a new goal came meanwhile (its
   // round comes next whatever the old round decided).
   void enterPhase(Phase phase);
