@@ -350,6 +350,8 @@ std::vector<KeySpec> buildKeys() {
            "No usable answer, danger ahead: stop once a stop begun this much later would collide"),
       real("arbiter.failed_round_speed_ratio", 0.1, 1.0, "0.7",
            "... meanwhile slow the committed path to this share of its speed per round (1: off)"),
+      flag("arbiter.backup_stop", "true",
+           "... and commit the path up to a verified stop clear of the danger (the backup stop)"),
       real("arbiter.progress_min_step_m", 0.01, 10.0, "0.5",
            "Progress: this much nearer to the goal than ever before"),
       real("arbiter.stuck_after_s", 0.5, 600.0, "4.0",

@@ -278,6 +278,15 @@ constexpr double kUnknownTolerance_m = 0.1;
 // ratio of the straight stop's length the straight one is taken when it is as clear.
 constexpr double kMuchLongerStop = 1.3;
 
+// Every sample of the trajectory (1 cm apart at most) inside the fence.
+bool staysInside(const Geofence& fence, const Trajectory& traj) {
+  const double dt = sampleStep(traj);
+  for (double t = 0.0; t < traj.duration() + dt; t += dt) {
+    if (!insideGeofence(fence, traj.position(std::min(t, traj.duration())))) return false;
+  }
+  return true;
+}
+
 // Keeps clearance_m from the occupied cells' centres through known space (kUnknownTolerance_m).
 bool isClear(const StopAssessment& seen, double clearance_m) {
   return seen.clearance_m >= clearance_m && seen.unknown_m <= kUnknownTolerance_m;
@@ -351,29 +360,38 @@ std::vector<Trajectory> makeSwervingStops(const KinematicState& start, double ma
   return stops;
 }
 
-bool isClearStop(const VoxelGrid& grid, const Trajectory& stop, double clearance_m) {
-  return isClear(assessStop(grid, stop, clearance_m + 0.1), clearance_m) &&
+bool isClearStop(const VoxelGrid& grid, const Trajectory& stop, double clearance_m,
+                 const Geofence* fence) {
+  return (!fence || staysInside(*fence, stop)) &&
+         isClear(assessStop(grid, stop, clearance_m + 0.1), clearance_m) &&
          !firstCollisionTime(grid, stop, 0.0, stop.duration());
 }
 
 Trajectory chooseStoppingTrajectory(const VoxelGrid* grid, const Trajectory& path, double t0,
                                     double max_acc_mps2, double max_vel_mps, double clearance_m,
-                                    double touch_m, bool may_swerve) {
+                                    double touch_m, bool may_swerve, const Geofence* fence) {
   Trajectory along = makeStoppingTrajectory(path, t0, max_acc_mps2, max_vel_mps);
   if (!grid || !grid->valid()) return along;
   Trajectory straight = makeStoppingTrajectory(path.state(t0), max_acc_mps2, max_vel_mps);
-  if (isClearStop(*grid, along, clearance_m)) {
+  if (isClearStop(*grid, along, clearance_m, fence)) {
     if (along.arcLength() <= kMuchLongerStop * straight.arcLength()) return along;
-    return isClearStop(*grid, straight, clearance_m) ? straight : along;
+    return isClearStop(*grid, straight, clearance_m, fence) ? straight : along;
   }
   const double limit = clearance_m + 0.1;
   const StopAssessment along_seen = assessStop(*grid, along, limit);
   const StopAssessment straight_seen = assessStop(*grid, straight, limit);
-  if (may_swerve && !isClearStop(*grid, straight, clearance_m)) {
+  if (may_swerve && !isClearStop(*grid, straight, clearance_m, fence)) {
     if (auto swerve = firstSwervingStop(
             path.state(t0), max_acc_mps2, max_vel_mps,
-            [&](const Trajectory& stop) { return isClearStop(*grid, stop, clearance_m); }))
+            [&](const Trajectory& stop) { return isClearStop(*grid, stop, clearance_m, fence); }))
       return *swerve;
+  }
+  if (fence) {
+    const bool along_in = staysInside(*fence, along), straight_in = staysInside(*fence, straight);
+    if (along_in != straight_in) {
+      const StopAssessment& inside_seen = along_in ? along_seen : straight_seen;
+      if (inside_seen.clearance_m >= touch_m) return along_in ? along : straight;
+    }
   }
   return saferStop(straight_seen, along_seen, touch_m) ? straight : along;
 }

@@ -128,6 +128,19 @@ Trajectory Trajectory::tail(double t0) const {
   return out;
 }
 
+Trajectory Trajectory::head(double t1) const {
+  Trajectory out;
+  double local = 0.0;
+  const int i = locate(t1, &local);
+  for (int j = 0; j < i; ++j) out.append(pieces_[j]);
+  if (i >= 0 && (local > 1e-9 || out.empty())) {
+    Piece last = pieces_[i];
+    last.duration = local;
+    out.append(last);
+  }
+  return out;
+}
+
 bool Trajectory::isFinite() const {
   for (const Piece& p : pieces_) {
     if (!std::isfinite(p.duration) || p.duration <= 0.0 || !p.coeffs.allFinite()) return false;

@@ -193,7 +193,6 @@ struct Vehicle {
   void onTrajectory(const trajectory_t& msg) {
     current_mode = msg.source_mode;
     ++record.commits;
-    if (msg.source_mode == plan_request_t::MODE_STOP) ++record.stops;
     std::vector<uint8_t> bytes(static_cast<size_t>(msg.getEncodedSize()));
     msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
     for (uint8_t b : bytes)
@@ -201,6 +200,8 @@ struct Vehicle {
   }
   void onStatus(const arbiter_status_t& msg) {
     if (msg.outcome == arbiter_status_t::OUTCOME_FAILED) ++record.failed_decisions;
+    // A stop is the vehicle starting to brake: a stop committed, or a backup stop reached.
+    if (msg.outcome == arbiter_status_t::OUTCOME_STOPPING) ++record.stops;
     const std::string detail = msg.detail.empty() ? "(no detail)" : msg.detail;
     if (msg.outcome == arbiter_status_t::OUTCOME_REJECTED) rejected_detail = detail;
     if (msg.outcome == arbiter_status_t::OUTCOME_UNREACHABLE) unreachable_detail = detail;

@@ -20,6 +20,11 @@ constexpr double kSameGoalDistanceM = 1e-6;  // a goal message repeated, not a m
 
 }  // namespace
 
+// The backup stop's search: bisection steps for the latest clear stop, then steps back until the
+// whole backup is clear.
+constexpr int kBackupSearchSteps = 6;
+constexpr double kBackupStepBackS = 0.1;
+
 // Recently flown positions, 5 per second over the last 20 s, are the back-off candidates.
 constexpr double kBackOffHistoryS = 20.0;
 constexpr double kBackOffSamplePeriodS = 0.2;
@@ -64,8 +69,7 @@ bool Arbiter::setGoal(int64_t goal_id, const Eigen::Vector3d& goal, int64_t now,
     return false;
   };
   if (!goal.allFinite()) return refuse("not finite");
-  const std::string outside =
-      geofenceViolation(Geofence{params_.geofence_min_m, params_.geofence_max_m}, goal, "it");
+  const std::string outside = geofenceViolation(geofence(), goal, "it");
   if (!outside.empty()) return refuse(outside);
   GoalPlacement placement;
   placement.ok = true;
@@ -186,8 +190,12 @@ Eigen::Vector3d Arbiter::vehiclePosition() const {
   return odometry_ ? odometry_->position : Eigen::Vector3d::Zero();
 }
 
+const Trajectory& Arbiter::flownTrajectory() const {
+  return committed_.backup ? *committed_.backup : committed_.trajectory;
+}
+
 KinematicState Arbiter::stateAt(int64_t utime) const {
-  if (hasCommitted()) return committed_.trajectory.state((utime - committed_.start_utime) * kUs);
+  if (hasCommitted()) return flownTrajectory().state((utime - committed_.start_utime) * kUs);
   KinematicState hold;
   hold.position = vehiclePosition();
   return hold;
@@ -221,9 +229,10 @@ double Arbiter::stopTouchDistance() const {
 }
 
 Trajectory Arbiter::stopAlongCommitted(double t0_s, bool may_swerve) const {
-  return chooseStoppingTrajectory(grid_, committed_.trajectory, t0_s, params_.max_acc_mps2,
+  const Geofence fence = geofence();
+  return chooseStoppingTrajectory(grid_, flownTrajectory(), t0_s, params_.max_acc_mps2,
                                   params_.max_vel_mps, params_.check_inflation_m,
-                                  stopTouchDistance(), may_swerve);
+                                  stopTouchDistance(), may_swerve, &fence);
 }
 
 bool Arbiter::stopCanWait(int64_t now) const {
@@ -302,6 +311,7 @@ void Arbiter::evaluate(int64_t now) {
     decide(now, true);
     return;
   }
+  reportBrakingOnBackupStop(now);
   const bool odometry_stale = odometryStale(now);
   if (!odometry_stale) slowDownIfTooFast(now);
   if (round_ || phase_ == Phase::kReached) return;
@@ -365,7 +375,9 @@ void Arbiter::evaluate(int64_t now) {
 
 void Arbiter::slowDownIfTooFast(int64_t now) {
   const double limit_mps = budget_.speed_limit_mps;
-  if (!hasCommitted() || committed_.mode == Mode::kStop || limit_mps >= params_.max_vel_mps) return;
+  if (!hasCommitted() || committed_.mode == Mode::kStop || committed_.backup ||
+      limit_mps >= params_.max_vel_mps)
+    return;
   // Not over a commit still to be sent; and a round in flight may still commit its answer, which
   // starts in the state of the trajectory it was asked from: the slowdown may only begin after it.
   if (commit_) return;
@@ -509,8 +521,13 @@ void Arbiter::commit(const Trajectory& trajectory, int64_t start_utime, Mode mod
   const double straight_m =
       (trajectory.position(trajectory.duration()) - trajectory.position(0.0)).norm();
   const double bound_s = restToRestTime(straight_m, params_.max_vel_mps, params_.max_acc_mps2);
-  committed_ =
-      Committed{trajectory, start_utime, mode, ends_at_goal, repaired, std::nullopt, bound_s};
+  committed_ = Committed{};
+  committed_.trajectory = trajectory;
+  committed_.start_utime = start_utime;
+  committed_.mode = mode;
+  committed_.ends_at_goal = ends_at_goal;
+  committed_.repaired_replan_utime = repaired;
+  committed_.bound_s = bound_s;
   if (grid_ && isPointBlocked(*grid_, trajectory.position(0.0))) {
     committed_.escape_until_s =
         escapeZoneEnd(trajectory, params_.start_escape_radius_m, params_.escape_step_s);
@@ -649,7 +666,7 @@ void Arbiter::decide(int64_t now, bool by_deadline) {
   last_failure_notes_ = notes;
   pushDecision(d);
   if (stopIfNoTimeLeft(now, by_deadline, notes, round.trigger)) {
-    slowDownAfterFailedRound(now, round.trigger);
+    flyOnWithBackupStop(now, round.trigger);
   } else {
     swerveIfStopMeetsObstacle(now, notes, round.trigger);
   }
@@ -686,46 +703,126 @@ void Arbiter::swerveIfStopMeetsObstacle(int64_t now, const std::string& notes, T
   // Braking along the stop under way, or straight, meets the obstacle as the stop does: only a
   // stop clear of it is worth committing; else the modes go on trying.
   const Trajectory stop = stopAlongCommitted(t0);
-  if (!isClearStop(*grid_, stop, params_.check_inflation_m)) return;
+  const Geofence fence = geofence();
+  if (!isClearStop(*grid_, stop, params_.check_inflation_m, &fence)) return;
   ++counters_.swerving_stops;
   commitStop(now, "the stop under way meets a newly mapped obstacle: swerving round it; " + notes,
              trigger, &stop);
 }
 
-void Arbiter::slowDownAfterFailedRound(int64_t now, Trigger trigger) {
-  const double ratio = params_.failed_round_speed_ratio;
-  if (ratio >= 1.0 || !hasCommitted() || committed_.mode == Mode::kStop || commit_ || round_)
-    return;
+void Arbiter::flyOnWithBackupStop(int64_t now, Trigger trigger) {
+  if (!hasCommitted() || committed_.mode == Mode::kStop || commit_ || round_ || !grid_) return;
   const int64_t start = now + static_cast<int64_t>(budget_.replan_lead_s * 1e6);
-  const Trajectory& path = committed_.trajectory;
+  const Trajectory& committed = committed_.trajectory;
   const double t0 = (start - committed_.start_utime) * kUs;
-  if (t0 >= path.duration()) return;
-  const double speed = path.velocity(t0).norm();
-  const Trajectory slow = makeSlowdownTrajectory(path, t0, ratio * speed, params_.max_acc_mps2);
-  if (slow.empty()) return;
-  // The same path re-timed meets the danger where the committed trajectory does, only later;
-  // the fitted curve must not meet anything nearer.
-  if (grid_) {
-    if (const auto slow_hit = firstCollisionTime(*grid_, slow, 0.0, slow.duration())) {
-      const auto hit = committedCollisionTime(t0, path.duration());
-      if (!hit || slow.arcLength(0.0, *slow_hit) < path.arcLength(t0, *hit) - grid_->resolution())
-        return;
+  // A backup stop about to begin is not moved: the vehicle brakes on it.
+  if (t0 >= committed.duration() || (committed_.backup && t0 >= committed_.backup_stop_s)) return;
+  // The path flown on: the committed one from the replan lead, or re-timed slower along it. The
+  // re-timed curve meets the danger where the committed one does, only later; it must not meet
+  // anything nearer.
+  Trajectory path = committed.tail(t0);
+  double slowed_to_mps = 0.0;
+  if (params_.failed_round_speed_ratio < 1.0) {
+    const double speed = committed.velocity(t0).norm();
+    const double slower_mps = params_.failed_round_speed_ratio * speed;
+    Trajectory slow = makeSlowdownTrajectory(committed, t0, slower_mps, params_.max_acc_mps2);
+    bool nearer = false;
+    if (!slow.empty()) {
+      if (const auto slow_hit = firstCollisionTime(*grid_, slow, 0.0, slow.duration())) {
+        const auto hit = committedCollisionTime(t0, committed.duration());
+        nearer = !hit || slow.arcLength(0.0, *slow_hit) <
+                             committed.arcLength(t0, *hit) - grid_->resolution();
+      }
+    }
+    if (!slow.empty() && !nearer) {
+      path = std::move(slow);
+      slowed_to_mps = slower_mps;
     }
   }
-  commit(slow, start, committed_.mode, committed_.ends_at_goal);
-  ++counters_.failed_round_slowdowns;
+  // Braking along the path from tb; the backup is the path up to tb, then that stop.
+  const Geofence fence = geofence();
+  auto stopFrom = [&](double tb) {
+    return makeStoppingTrajectory(path, tb, params_.max_acc_mps2, params_.max_vel_mps);
+  };
+  auto backupFrom = [&](double tb) {
+    Trajectory backup = tb > 1e-9 ? path.head(tb) : Trajectory();
+    const Trajectory stop = stopFrom(tb);
+    for (const Piece& piece : stop.pieces()) backup.append(piece);
+    return backup;
+  };
+  auto clear = [&](const Trajectory& t) {
+    return isClearStop(*grid_, t, params_.check_inflation_m, &fence);
+  };
+  // The latest tb before the danger whose stop is clear (isClearStop: the known obstacles, known
+  // space, the geofence), by bisection; then stop_decision_margin_s earlier (the margin a waiting
+  // stop keeps for what later maps show), where the whole backup must be clear.
+  const auto path_hit = firstCollisionTime(*grid_, path, 0.0, path.duration());
+  const double horizon = path_hit ? *path_hit : path.duration();
+  std::optional<double> backup_s;
+  if (params_.backup_stop && clear(stopFrom(0.0))) {
+    double lo = 0.0, hi = horizon;
+    for (int i = 0; i < kBackupSearchSteps; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (clear(stopFrom(mid)) ? lo : hi) = mid;
+    }
+    for (double tb = std::max(0.0, lo - params_.stop_decision_margin_s);;
+         tb = std::max(0.0, tb - kBackupStepBackS)) {
+      if (clear(backupFrom(tb))) {
+        backup_s = tb;
+        break;
+      }
+      if (tb <= 0.0) break;
+    }
+  }
+  if (!backup_s && slowed_to_mps == 0.0) return;  // nothing new: the stop waits as it is
+  const bool ends_at_goal = committed_.ends_at_goal;
+  commit(path, start, committed_.mode, ends_at_goal);
+  if (backup_s) {
+    committed_.backup = backupFrom(*backup_s);
+    committed_.backup_stop_s = *backup_s;
+    commit_->trajectory = *committed_.backup;
+    ++counters_.backup_stops;
+  }
+  const Trajectory& flown = flownTrajectory();
+  if (slowed_to_mps > 0.0) ++counters_.failed_round_slowdowns;
   DecisionOut d;
   d.trigger = trigger;
   d.outcome = Outcome::kCommitted;
   d.committed_mode = committed_.mode;
   d.trajectory_id = commit_->trajectory_id;
-  d.local_target = slow.position(slow.duration());
-  // The slowdown is the first answer to the danger; the plan that avoids it comes later.
+  d.local_target = flown.position(flown.duration());
+  // The danger's first answer: the vehicle flies on and stops clear of it unless a mode answers
+  // in time; the plan that avoids it comes later.
   d.threat_seen_utime = std::exchange(threat_seen_utime_, std::nullopt).value_or(0);
-  char text[96];
-  std::snprintf(text, sizeof(text),
-                "slowing down to %.2f m/s while every mode fails: ", ratio * speed);
+  char text[160];
+  if (backup_s) {
+    std::snprintf(text, sizeof(text),
+                  "every mode failed: flying on%s with a backup stop in %.2f s (%.1f m) unless a "
+                  "mode answers: ",
+                  slowed_to_mps > 0.0 ? " slower" : "", *backup_s, path.arcLength(0.0, *backup_s));
+  } else {
+    std::snprintf(text, sizeof(text),
+                  "slowing down to %.2f m/s while every mode fails: ", slowed_to_mps);
+  }
   d.detail = text + last_failure_notes_;
+  pushDecision(d);
+}
+
+void Arbiter::reportBrakingOnBackupStop(int64_t now) {
+  if (!hasCommitted() || !committed_.backup) return;
+  if (now < committed_.start_utime + static_cast<int64_t>(committed_.backup_stop_s * 1e6)) return;
+  // From here on it is a stop like any other: no stop on top of it, retries held back.
+  committed_.trajectory = *std::exchange(committed_.backup, std::nullopt);
+  committed_.mode = Mode::kStop;
+  committed_.ends_at_goal = false;
+  ++counters_.stops;
+  DecisionOut d;
+  d.outcome = Outcome::kStopping;
+  d.committed_mode = Mode::kStop;
+  d.trajectory_id = next_trajectory_id_ - 1;
+  d.local_target = committed_.trajectory.position(committed_.trajectory.duration());
+  d.detail =
+      "no usable answer in time: braking on the backup stop; last failure: " + last_failure_notes_;
   pushDecision(d);
 }
 

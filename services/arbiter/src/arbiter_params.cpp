@@ -94,6 +94,7 @@ ArbiterParams loadArbiterParams(const Config& config) {
   p.stop_min_speed_mps = config.getDouble("arbiter.stop_min_speed_mps");
   p.stop_decision_margin_s = config.getDouble("arbiter.stop_decision_margin_s");
   p.failed_round_speed_ratio = config.getDouble("arbiter.failed_round_speed_ratio");
+  p.backup_stop = config.getBool("arbiter.backup_stop");
   p.braking_speed_mps = config.getDouble("arbiter.braking_speed_mps");
   p.progress_min_step_m = config.getDouble("arbiter.progress_min_step_m");
   p.stuck_after_s = config.getDouble("arbiter.stuck_after_s");

@@ -518,6 +518,7 @@ TEST_F(ArbiterRules, AnObstacleMappedOnABrakingStopIsAnsweredOnThatMap) {
 TEST_F(ArbiterRules, ADangerThatANewMapNoLongerShowsIsAnsweredByNoLaterCommit) {
   params_.stale_map_s = 10.0;
   params_.failed_round_speed_ratio = 1.0;  // no slowdown answers the danger meanwhile
+  params_.backup_stop = false;             // nor a backup stop
   params_.emergency_horizon_s = 30.0;      // every collision is an emergency: EAM
   params_.defer_far_collisions = false;
   auto a = started(Policy::kMmh);
@@ -559,6 +560,7 @@ TEST_F(ArbiterRules, AFarDangerLetsTheStopWaitUntilItCannotWaitAnyLonger) {
   params_.stale_map_s = 10.0;  // no new maps in this test, and no stale-map stop either
   params_.defer_far_collisions = false;
   params_.failed_round_speed_ratio = 1.0;  // the stop rule alone (the slowdown: its own test)
+  params_.backup_stop = false;             // (the backup stop: its own test)
   auto a = started(Policy::kMmh);
   KinematicState before;
   const double t1 = flyToCruise(*a, &before);
@@ -591,6 +593,7 @@ TEST_F(ArbiterRules, AFarDangerLetsTheStopWaitUntilItCannotWaitAnyLonger) {
 TEST_F(ArbiterRules, AFailedRoundWithAFarDangerSlowsTheCommittedPathWhileTheStopWaits) {
   params_.stale_map_s = 10.0;
   params_.defer_far_collisions = false;
+  params_.backup_stop = false;  // the slowdown alone (the backup stop: its own test)
   for (const double ratio : {1.0, 0.7}) {
     SCOPED_TRACE("ratio " + std::to_string(ratio));
     params_.failed_round_speed_ratio = ratio;
@@ -647,6 +650,83 @@ TEST_F(ArbiterRules, AFailedRoundWithAFarDangerSlowsTheCommittedPathWhileTheStop
     const Trajectory& st = stop->trajectory;
     EXPECT_FALSE(mmh::firstCollisionTime(grid_, st, 0.0, st.duration()).has_value());
     EXPECT_LT(st.velocity(st.duration()).norm(), 1e-6);
+  }
+}
+
+// Every mode failed, the danger is far: the vehicle flies on along the committed path (slowed or
+// not), but what is committed ends in a stop clear of the danger, the backup stop, so the danger
+// is answered at once. When no mode ever answers, the vehicle brakes on it, with no new commit,
+// and a decision says so.
+TEST_F(ArbiterRules, AFailedRoundWithAFarDangerCommitsThePathUpToABackupStopClearOfIt) {
+  params_.stale_map_s = 10.0;
+  params_.defer_far_collisions = false;
+  for (const double ratio : {1.0, 0.7}) {
+    SCOPED_TRACE("ratio " + std::to_string(ratio));
+    params_.failed_round_speed_ratio = ratio;
+    clearGrid();
+    auto a = started(Policy::kMmh);
+    KinematicState before;
+    const double t1 = cruiseIntoMappedPillar(*a, 7.0, &before);
+    const Trajectory path = a->committed();
+    const int64_t path_start = a->committedStartUtime();
+    ASSERT_TRUE(
+        mmh::firstCollisionTime(grid_, path, (at(t1) - path_start) * 1e-6, path.duration()));
+    auto eam = a->takeRequests();
+    ASSERT_EQ(eam.size(), 1u);
+    a->takeDecisions();
+    a->onAnswer(failedAnswer(eam[0]), at(t1 + 0.005));
+    auto commit = a->takeCommit();
+    ASSERT_TRUE(commit.has_value());
+    EXPECT_NE(commit->mode, Mode::kStop);
+    EXPECT_EQ(a->counters().backup_stops, 1);
+    EXPECT_EQ(a->counters().failed_round_slowdowns, ratio < 1.0 ? 1 : 0);
+    EXPECT_EQ(a->counters().stops, 0);
+    const auto decisions = a->takeDecisions();
+    ASSERT_EQ(decisions.size(), 2u);
+    EXPECT_EQ(decisions.back().outcome, Outcome::kCommitted);
+    EXPECT_NE(decisions.back().detail.find("backup stop"), std::string::npos);
+    EXPECT_GT(decisions.back().threat_seen_utime, 0);  // the danger's answer, on its own map
+    // Checked here, not by the arbiter's code: clear of the pillar, at rest, within the limits,
+    // and on the committed path at first.
+    const Trajectory& backup = commit->trajectory;
+    EXPECT_FALSE(mmh::firstCollisionTime(grid_, backup, 0.0, backup.duration()).has_value());
+    EXPECT_LT(backup.velocity(backup.duration()).norm(), 1e-6);
+    EXPECT_LE(backup.maxAcceleration(), params_.max_acc_mps2 * 1.001);
+    const double s0 = (commit->start_utime - path_start) * 1e-6;
+    EXPECT_LT((backup.state(0.0).velocity - path.velocity(s0)).norm(), 1e-6);
+    for (double t = 0.0; t <= backup.duration(); t += 0.05) {
+      double nearest = 1e9;
+      for (double u = s0; u <= path.duration(); u += 0.002)
+        nearest = std::min(nearest, (path.position(u) - backup.position(t)).norm());
+      ASSERT_LT(nearest, 0.02) << "at " << t << " s";  // braking along it, not swerving
+    }
+    // No mode answers again: each failed round moves the backup stop on as far as it stays
+    // clear, every trajectory the vehicle is sent starts where it is and ends at rest clear of
+    // the pillar; then it brakes on the last one, without a new commit, and a decision says so.
+    bool braking = false;
+    for (double t = t1 + 0.02; t < t1 + 8.0 && !braking; t += 0.01) {
+      const int64_t now = at(t);
+      const KinematicState flying = a->committed().state((now - a->committedStartUtime()) * 1e-6);
+      const Trajectory before_round = a->committed();
+      const int64_t before_start = a->committedStartUtime();
+      a->onOdometry(flying, now);
+      for (auto& r : a->takeRequests()) a->onAnswer(failedAnswer(r), now + 1000);
+      if (auto c = a->takeCommit()) {
+        EXPECT_NE(c->mode, Mode::kStop);
+        const Trajectory& f = c->trajectory;
+        EXPECT_FALSE(mmh::firstCollisionTime(grid_, f, 0.0, f.duration()).has_value());
+        EXPECT_LT(f.velocity(f.duration()).norm(), 1e-6);
+        const double from_s = (c->start_utime - before_start) * 1e-6;
+        EXPECT_LT((f.position(0.0) - before_round.position(from_s)).norm(), 1e-6);
+        EXPECT_LT((f.velocity(0.0) - before_round.velocity(from_s)).norm(), 1e-6);
+      }
+      for (const auto& d : a->takeDecisions()) {
+        braking |=
+            d.outcome == Outcome::kStopping && d.detail.find("backup stop") != std::string::npos;
+      }
+    }
+    EXPECT_TRUE(braking);
+    EXPECT_EQ(a->counters().stops, 1);
   }
 }
 

@@ -338,6 +338,23 @@ TEST(StoppingTrajectory, SwervesWhenNoStopThatBrakesIsClear) {
             1e-9);
 }
 
+// A stop climbing at 45 degrees from 1.1 m to rest above 2.7 m: clear of every obstacle, but
+// through the ceiling of a 2.7 m geofence, so not clear when that fence is given.
+TEST(StoppingTrajectory, AStopThroughTheGeofenceIsNotClear) {
+  mmh::KinematicState s;
+  s.position = Eigen::Vector3d(1.0, 0.0, 1.1);
+  s.velocity = Eigen::Vector3d(2.0, 0.0, 2.0);
+  const mmh::Trajectory stop = mmh::makeStoppingTrajectory(s, 2.0, 3.0);
+  ASSERT_GT(stop.position(stop.duration()).z(), 2.7);
+  ASSERT_LT(stop.position(stop.duration()).z(), 2.9);  // inside the grid's 3 m
+  const mmh::VoxelGrid clear = gridWithPillar(8.0, 0.0, 0.0);
+  const mmh::Geofence fence{Eigen::Vector3d(-30, -30, 0.3), Eigen::Vector3d(30, 30, 2.7)};
+  const mmh::Geofence high{Eigen::Vector3d(-30, -30, 0.3), Eigen::Vector3d(30, 30, 2.9)};
+  EXPECT_TRUE(mmh::isClearStop(clear, stop, 0.25));
+  EXPECT_TRUE(mmh::isClearStop(clear, stop, 0.25, &high));
+  EXPECT_FALSE(mmh::isClearStop(clear, stop, 0.25, &fence));
+}
+
 namespace {
 
 // A cruise along x: from rest at the origin to rest 20 m on, at up to about 3 m/s (4 pieces).

@@ -92,6 +92,20 @@ TEST(Trajectory, TailKeepsTheCurve) {
   }
 }
 
+TEST(Trajectory, HeadKeepsTheCurveUpToItsEnd) {
+  Trajectory t({axisPiece(1.0, 0, {0.0, 1.0, 0.5, -0.2}), axisPiece(2.0, 0, {1.3, 1.4, -0.1})});
+  for (double t1 : {0.4, 1.0, 1.7, 3.0, 5.0}) {
+    Trajectory head = t.head(t1);
+    EXPECT_NEAR(head.duration(), std::min(t1, 3.0), 1e-12);
+    for (double s = 0.0; s <= head.duration(); s += 0.1) {
+      EXPECT_NEAR(head.position(s).x(), t.position(s).x(), 1e-12);
+      EXPECT_NEAR(head.acceleration(s).x(), t.acceleration(s).x(), 1e-12);
+    }
+  }
+  EXPECT_EQ(t.head(1.0).numPieces(), 1);
+  EXPECT_NEAR(t.head(0.0).duration(), 0.0, 1e-12);
+}
+
 TEST(Trajectory, MessageRoundTrip) {
   Trajectory t({axisPiece(1.0, 0, {0.0, 1.0, 0.5, -0.2, 0.1, 0.01, 0.001, 1e-4}),
                 axisPiece(0.5, 2, {1.0, -1.0})});

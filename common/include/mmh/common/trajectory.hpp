@@ -62,6 +62,8 @@ class Trajectory {
   double maxJerk(double* at_time = nullptr) const;
   // Part from t0 to the end, re-based so that it starts at time 0.
   Trajectory tail(double t0) const;
+  // Part from the start to t1.
+  Trajectory head(double t1) const;
   // All coefficients and durations finite, durations positive.
   bool isFinite() const;
 

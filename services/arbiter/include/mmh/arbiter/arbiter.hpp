@@ -20,6 +20,7 @@
 #include "mmh/arbiter/phase.hpp"
 #include "mmh/arbiter/progress_monitor.hpp"
 #include "mmh/arbiter/replan_rules.hpp"
+#include "mmh/common/geofence.hpp"
 #include "mmh/common/trajectory.hpp"
 #include "mmh/common/voxel_grid.hpp"
 
@@ -95,6 +96,7 @@ struct ArbiterCounters {
   int slowdowns = 0;  // committed trajectories slowed to the latency budget's speed limit
   int failed_round_slowdowns = 0;  // ... slowed because every mode failed with danger ahead
   int swerving_stops = 0;    // stops under way replaced by one that swerves round a new obstacle
+  int backup_stops = 0;      // failed rounds answered by flying on with a verified backup stop
   int degraded_periods = 0;  // times the latency budget became degraded
   int moved_goals = 0;       // goals moved out of an obstacle's margin
   int kept_trajectories =
@@ -130,7 +132,8 @@ class Arbiter {
   Phase phase() const { return phase_; }
   bool hasGoal() const { return phase_ != Phase::kIdle; }
   bool hasCommitted() const { return !committed_.trajectory.empty(); }
-  const Trajectory& committed() const { return committed_.trajectory; }
+  // What the vehicle was sent to fly (with its backup stop, if any).
+  const Trajectory& committed() const { return flownTrajectory(); }
   int64_t committedStartUtime() const { return committed_.start_utime; }
   Mode committedMode() const { return committed_.mode; }
   bool pending() const { return round_.has_value(); }  // a planning round is in flight
@@ -168,6 +171,12 @@ class Arbiter {
     // and must keep escape_min_distance_m from the occupied cells (answer_check.hpp).
     double escape_until_s = 0.0;
     double escape_min_distance_m = 0.0;
+    // Flown on after every mode failed (flyOnWithBackupStop): `trajectory` is the path the
+    // arbiter checks and asks about, `backup` what the vehicle flies, the same path up to
+    // backup_stop_s and then a stop clear of the danger. Once the vehicle brakes on it, the backup
+    // becomes the committed stop.
+    std::optional<Trajectory> backup;
+    double backup_stop_s = 0.0;
   };
   // A planning round in flight: requests sent, answers collected until all came or the deadline.
   struct Round {
@@ -222,9 +231,15 @@ class Arbiter {
   // The decision's detail names the danger, then `notes` (what the modes said). True when danger
   // is ahead and the stop can still wait.
   bool stopIfNoTimeLeft(int64_t now, bool by_deadline, const std::string& notes, Trigger trigger);
-  // Every mode failed with danger ahead and the stop can wait: slow the committed trajectory
-  // along its path to failed_round_speed_ratio of its speed, if that meets nothing sooner.
-  void slowDownAfterFailedRound(int64_t now, Trigger trigger);
+  // Every mode failed with danger ahead and the stop can wait: fly on along the committed path,
+  // slowed to failed_round_speed_ratio of its speed (if that meets nothing sooner), and commit it
+  // up to the latest point from which braking along it still ends clear of the known obstacles in
+  // known space, less stop_decision_margin_s, followed by that stop (the backup stop). A mode's
+  // answer on a later map replaces it; else the vehicle brakes there (a kStopping decision).
+  // Without such a point, the slowed path alone.
+  void flyOnWithBackupStop(int64_t now, Trigger trigger);
+  // The vehicle has reached the backup stop of the committed trajectory: report the stop.
+  void reportBrakingOnBackupStop(int64_t now);
   // A stop begun stop_decision_margin_s later would still end clear of the known obstacles.
   bool stopCanWait(int64_t now) const;
   // The stop (chooseStoppingTrajectory) that leaves the committed trajectory t0_s into it; one
@@ -248,6 +263,9 @@ class Arbiter {
   // when the reach is mapped, or the committed trajectory is a stop (chosen as the safest).
   std::optional<double> unmappedAhead(int64_t now, double extra_s) const;
   KinematicState stateAt(int64_t utime) const;
+  // What the vehicle flies: the committed trajectory, or its backup (Committed::backup).
+  const Trajectory& flownTrajectory() const;
+  Geofence geofence() const { return Geofence{params_.geofence_min_m, params_.geofence_max_m}; }
   Eigen::Vector3d vehiclePosition() const;
   void pushDecision(DecisionOut decision);
   void updateLatencyBudget();

@@ -106,6 +106,9 @@ struct ArbiterParams {
   // ... and while it waits, each such round slows the committed trajectory along its path to this
   // share of its speed (1: off), so that the next rounds start slower.
   double failed_round_speed_ratio = 0.7;
+  // ... and commits it only up to the latest point from which a stop still ends clear (less the
+  // margin above), followed by that stop: the danger is answered at once (flyOnWithBackupStop).
+  bool backup_stop = true;
   double braking_speed_mps = 0.1;  // a committed stop faster than this still brakes
   // The stuck detector (progress_monitor.hpp, stuckResponse).
   double progress_min_step_m = 0.5;     // progress: this much nearer to the goal than ever before
