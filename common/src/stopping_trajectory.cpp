@@ -278,6 +278,10 @@ constexpr double kUnknownTolerance_m = 0.1;
 // ratio of the straight stop's length the straight one is taken when it is as clear.
 constexpr double kMuchLongerStop = 1.3;
 
+// Clearance is measured this far past what a clear stop needs, so that the safer of two stops
+// that are not clear can still be told apart.
+constexpr double kClearanceSeenBeyond_m = 0.1;
+
 // Every sample of the trajectory (1 cm apart at most) inside the fence.
 bool staysInside(const Geofence& fence, const Trajectory& traj) {
   const double dt = sampleStep(traj);
@@ -360,40 +364,58 @@ std::vector<Trajectory> makeSwervingStops(const KinematicState& start, double ma
   return stops;
 }
 
+namespace {
+
+// One candidate stop and what the choice needs to know of it, each part computed once.
+struct CandidateStop {
+  Trajectory trajectory;
+  StopAssessment seen;
+  bool inside = true;  // within the geofence (or no fence)
+  bool clear = false;  // inside, clear of the known obstacles through known space, and passes
+                       // the arbiter's collision check
+};
+
+CandidateStop examineStop(const VoxelGrid& grid, Trajectory stop, double clearance_m,
+                          const Geofence* fence) {
+  CandidateStop c;
+  c.trajectory = std::move(stop);
+  c.inside = !fence || staysInside(*fence, c.trajectory);
+  c.seen = assessStop(grid, c.trajectory, clearance_m + kClearanceSeenBeyond_m);
+  c.clear = c.inside && isClear(c.seen, clearance_m) &&
+            !firstCollisionTime(grid, c.trajectory, 0.0, c.trajectory.duration());
+  return c;
+}
+
+}  // namespace
+
 bool isClearStop(const VoxelGrid& grid, const Trajectory& stop, double clearance_m,
                  const Geofence* fence) {
-  return (!fence || staysInside(*fence, stop)) &&
-         isClear(assessStop(grid, stop, clearance_m + 0.1), clearance_m) &&
-         !firstCollisionTime(grid, stop, 0.0, stop.duration());
+  return examineStop(grid, stop, clearance_m, fence).clear;
 }
 
 Trajectory chooseStoppingTrajectory(const VoxelGrid* grid, const Trajectory& path, double t0,
                                     double max_acc_mps2, double max_vel_mps, double clearance_m,
                                     double touch_m, bool may_swerve, const Geofence* fence) {
-  Trajectory along = makeStoppingTrajectory(path, t0, max_acc_mps2, max_vel_mps);
-  if (!grid || !grid->valid()) return along;
-  Trajectory straight = makeStoppingTrajectory(path.state(t0), max_acc_mps2, max_vel_mps);
-  if (isClearStop(*grid, along, clearance_m, fence)) {
-    if (along.arcLength() <= kMuchLongerStop * straight.arcLength()) return along;
-    return isClearStop(*grid, straight, clearance_m, fence) ? straight : along;
-  }
-  const double limit = clearance_m + 0.1;
-  const StopAssessment along_seen = assessStop(*grid, along, limit);
-  const StopAssessment straight_seen = assessStop(*grid, straight, limit);
-  if (may_swerve && !isClearStop(*grid, straight, clearance_m, fence)) {
+  Trajectory along_stop = makeStoppingTrajectory(path, t0, max_acc_mps2, max_vel_mps);
+  if (!grid || !grid->valid()) return along_stop;
+  Trajectory straight_stop = makeStoppingTrajectory(path.state(t0), max_acc_mps2, max_vel_mps);
+  const bool along_much_longer =
+      along_stop.arcLength() > kMuchLongerStop * straight_stop.arcLength();
+  const CandidateStop along = examineStop(*grid, std::move(along_stop), clearance_m, fence);
+  if (along.clear && !along_much_longer) return along.trajectory;
+  const CandidateStop straight = examineStop(*grid, std::move(straight_stop), clearance_m, fence);
+  if (along.clear) return straight.clear ? straight.trajectory : along.trajectory;
+  if (may_swerve && !straight.clear) {
     if (auto swerve = firstSwervingStop(
             path.state(t0), max_acc_mps2, max_vel_mps,
             [&](const Trajectory& stop) { return isClearStop(*grid, stop, clearance_m, fence); }))
       return *swerve;
   }
-  if (fence) {
-    const bool along_in = staysInside(*fence, along), straight_in = staysInside(*fence, straight);
-    if (along_in != straight_in) {
-      const StopAssessment& inside_seen = along_in ? along_seen : straight_seen;
-      if (inside_seen.clearance_m >= touch_m) return along_in ? along : straight;
-    }
+  if (along.inside != straight.inside) {
+    const CandidateStop& inside = along.inside ? along : straight;
+    if (inside.seen.clearance_m >= touch_m) return inside.trajectory;
   }
-  return saferStop(straight_seen, along_seen, touch_m) ? straight : along;
+  return saferStop(straight.seen, along.seen, touch_m) ? straight.trajectory : along.trajectory;
 }
 
 }  // namespace mmh
