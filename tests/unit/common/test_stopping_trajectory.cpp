@@ -194,6 +194,29 @@ TEST(StoppingTrajectory, ChoosesTheStopThatKeepsClearOfTheObstacle) {
   EXPECT_LT((kept.position(kept.duration()) - along.position(along.duration())).norm(), 1e-9);
 }
 
+// assessStop searches the occupied cells only where the clearance could still fall; its minimum
+// must be the one a search at every sample (1 cm apart) finds, up to the limit asked.
+TEST(StoppingTrajectory, AssessedClearanceIsTheMinimumOverEverySample) {
+  const mmh::Trajectory path = bendingPath();
+  const mmh::Trajectory stop = mmh::makeStoppingTrajectory(path, 0.0, 2.0, 3.0);
+  for (const double y : {0.3, 0.45, 0.6, 0.8, 1.0}) {
+    for (const double radius : {0.1, 0.3}) {
+      const mmh::VoxelGrid pillar = gridWithPillar(1.15, y, radius);
+      for (const double limit : {0.35, 1.0}) {
+        double every_sample = limit;
+        for (double t = 0.0; t <= stop.duration() + 1e-9; t += 0.002) {
+          const double tc = std::min(t, stop.duration());
+          every_sample = std::min(every_sample,
+                                  mmh::occupiedDistance(pillar, stop.position(tc), every_sample));
+        }
+        SCOPED_TRACE("pillar at y " + std::to_string(y) + ", radius " + std::to_string(radius) +
+                     ", limit " + std::to_string(limit));
+        EXPECT_NEAR(mmh::assessStop(pillar, stop, limit).clearance_m, every_sample, 2e-3);
+      }
+    }
+  }
+}
+
 // A bend flown at a_max (3 m/s round 4.5 m) leaves nothing to brake with along it at first: that
 // stop runs on far longer than the straight one, which is taken when the way is as clear - and
 // not when a pillar stands where the straight stop would end.
