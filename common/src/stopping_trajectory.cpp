@@ -235,6 +235,9 @@ Trajectory makeSlowdownTrajectory(const Trajectory& path, double t0, double max_
   // Re-timed to a small share of its speed the rest would take ages (and its fit as long):
   // braking to rest serves better.
   if (max_speed_mps < kMinSlowdownRatio * top_speed) return Trajectory();
+  // Nor is a curve slowed again and again (every failed round slows the last slowdown) re-timed
+  // past kLongestSlowdownS: its fit grows with its length, and so does every check of it.
+  if ((end - t0) * top_speed / max_speed_mps > kLongestSlowdownS) return Trajectory();
   const KinematicState start = path.state(t0);
   const double speed = start.velocity.norm();
   const double ratio = max_speed_mps / top_speed;

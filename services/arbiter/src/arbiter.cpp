@@ -20,10 +20,12 @@ constexpr double kSameGoalDistanceM = 1e-6;  // a goal message repeated, not a m
 
 }  // namespace
 
-// The backup stop's search: bisection steps for the latest clear stop, then steps back until the
-// whole backup is clear.
+// The backup stop's search: bisection steps for the latest clear stop within the horizon, and
+// as many again for the latest point before it from which the whole backup is clear. Each step
+// walks the backup, so both bound the time the arbiter spends on a failed round: a slow path
+// searched 0.1 s at a time to its end once held it for 1.3 s while the vehicle flew on.
 constexpr int kBackupSearchSteps = 6;
-constexpr double kBackupStepBackS = 0.1;
+constexpr double kBackupHorizonS = 3.0;
 
 // Recently flown positions, 5 per second over the last 20 s, are the back-off candidates.
 constexpr double kBackOffHistoryS = 20.0;
@@ -138,7 +140,7 @@ void Arbiter::onMapUpdated(const VoxelGrid& grid, int64_t map_seq, int64_t map_u
     }
     if (threat_s) {
       collision_eta_s_ = collision_eta_s_ ? std::min(*collision_eta_s_, *threat_s) : *threat_s;
-      if (!threat_seen_utime_) threat_seen_utime_ = map_utime;
+      if (!threat_seen_utime_ && dangerOnFlownTrajectory(now_)) threat_seen_utime_ = map_utime;
     } else {
       // The danger a failed round left unanswered is gone from this map: no commit answers it.
       threat_seen_utime_.reset();
@@ -253,6 +255,17 @@ bool Arbiter::stopCanWait(int64_t now) const {
   const double limit_m = params_.check_inflation_m;
   return assessStop(*grid_, later_stop, limit_m).unknown_m <=
          assessStop(*grid_, stop_now, limit_m).unknown_m + grid_->resolution();
+}
+
+bool Arbiter::dangerOnFlownTrajectory(int64_t now) const {
+  if (!committed_.backup) return true;
+  const Trajectory& backup = *committed_.backup;
+  const double elapsed = std::max(0.0, (now - committed_.start_utime) * kUs);
+  return firstCollisionTime(*grid_, backup, elapsed, backup.duration()).has_value() ||
+         firstUnknownWithinReach(backup, elapsed,
+                                 budget_.replan_lead_s + params_.stop_decision_margin_s, *grid_,
+                                 params_)
+             .has_value();
 }
 
 std::optional<double> Arbiter::unmappedAhead(int64_t now, double extra_s) const {
@@ -756,22 +769,29 @@ void Arbiter::flyOnWithBackupStop(int64_t now, Trigger trigger) {
   // The latest tb before the danger whose stop is clear (isClearStop: the known obstacles, known
   // space, the geofence), by bisection; then stop_decision_margin_s earlier (the margin a waiting
   // stop keeps for what later maps show), where the whole backup must be clear.
-  const auto path_hit = firstCollisionTime(*grid_, path, 0.0, path.duration());
-  const double horizon = path_hit ? *path_hit : path.duration();
+  const double search_end = std::min(path.duration(), kBackupHorizonS);
+  const auto path_hit = firstCollisionTime(*grid_, path, 0.0, search_end);
+  const double horizon = path_hit ? *path_hit : search_end;
   std::optional<double> backup_s;
+  // Both bisections keep `lo` at a verified clear point: braking at once is (backupFrom(0) is
+  // that stop).
   if (params_.backup_stop && clear(stopFrom(0.0))) {
     double lo = 0.0, hi = horizon;
     for (int i = 0; i < kBackupSearchSteps; ++i) {
       const double mid = 0.5 * (lo + hi);
       (clear(stopFrom(mid)) ? lo : hi) = mid;
     }
-    for (double tb = std::max(0.0, lo - params_.stop_decision_margin_s);;
-         tb = std::max(0.0, tb - kBackupStepBackS)) {
-      if (clear(backupFrom(tb))) {
-        backup_s = tb;
-        break;
+    const double latest = std::max(0.0, lo - params_.stop_decision_margin_s);
+    if (clear(backupFrom(latest))) {
+      backup_s = latest;
+    } else {
+      lo = 0.0;
+      hi = latest;
+      for (int i = 0; i < kBackupSearchSteps; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (clear(backupFrom(mid)) ? lo : hi) = mid;
       }
-      if (tb <= 0.0) break;
+      backup_s = lo;
     }
   }
   if (!backup_s && slowed_to_mps == 0.0) return;  // nothing new: the stop waits as it is

@@ -737,6 +737,52 @@ TEST_F(ArbiterRules, AFailedRoundWithAFarDangerCommitsThePathUpToABackupStopClea
   }
 }
 
+// With a backup stop committed, the maps that show the danger again beyond it show nothing new:
+// no decision is reported as a danger's answer. An obstacle that a later map shows on the backup
+// stop itself is a new danger: the stop that answers it says when that map showed it.
+TEST_F(ArbiterRules, OnlyAnObstacleMappedOnTheBackupStopIsANewDanger) {
+  params_.stale_map_s = 10.0;
+  params_.defer_far_collisions = false;
+  params_.failed_round_speed_ratio = 1.0;
+  auto a = started(Policy::kMmh);
+  Trajectory path;
+  int64_t path_start = 0;
+  const double t1 = failARoundBeforeAFarPillar(*a, &path, &path_start);
+  auto commit = a->takeCommit();
+  ASSERT_TRUE(commit.has_value());
+  ASSERT_EQ(a->counters().backup_stops, 1);
+  a->takeDecisions();
+  // The same map again: a round for the pillar beyond the backup stop, which fails.
+  const double t_again = t1 + 0.05;
+  a->onMapUpdated(grid_, ++map_seq_, at(t_again), at(t_again));
+  a->onOdometry(a->committed().state((at(t_again) - a->committedStartUtime()) * 1e-6), at(t_again));
+  const auto again = a->takeRequests();
+  ASSERT_FALSE(again.empty());
+  for (const auto& r : again) a->onAnswer(failedAnswer(r), at(t_again) + 1000);
+  commit = a->takeCommit();
+  for (const auto& d : a->takeDecisions()) EXPECT_EQ(d.threat_seen_utime, 0) << d.detail;
+  // A second pillar 1.5 m ahead, on the way to the backup stop.
+  const double t2 = t1 + 0.1;
+  const KinematicState here = a->committed().state((at(t2) - a->committedStartUtime()) * 1e-6);
+  putPillar(here.position.x() + 1.5, here.position.y(), 0.3);
+  ASSERT_TRUE(
+      mmh::firstCollisionTime(grid_, commit->trajectory, 0.0, commit->trajectory.duration()));
+  a->onMapUpdated(grid_, ++map_seq_, at(t2), at(t2));
+  a->onOdometry(here, at(t2));
+  int64_t answered_seen = 0;
+  for (double t = t2; t < t2 + 1.0 && answered_seen == 0; t += 0.01) {
+    const int64_t now = at(t);
+    a->onOdometry(a->committed().state((now - a->committedStartUtime()) * 1e-6), now);
+    for (auto& r : a->takeRequests()) a->onAnswer(failedAnswer(r), now + 1000);
+    a->takeCommit();
+    for (const auto& d : a->takeDecisions()) {
+      if (d.outcome != Outcome::kFailed && d.threat_seen_utime != 0)
+        answered_seen = d.threat_seen_utime;
+    }
+  }
+  EXPECT_EQ(answered_seen, at(t2));
+}
+
 TEST_F(ArbiterRules, WhileStuckAFailedRoundWithTheDangerCloseStopsAtOnce) {
   // Stuck from the start: retries come at most every stuck_retry_period_s, too late for a danger
   // this close.

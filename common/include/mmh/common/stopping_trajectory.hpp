@@ -29,6 +29,8 @@ Trajectory makeStoppingTrajectory(const Trajectory& path, double t0, double max_
 
 // Below this share of the top speed a slowdown is not made (makeSlowdownTrajectory).
 constexpr double kMinSlowdownRatio = 0.1;
+// Nor one that would take longer than this (s).
+constexpr double kLongestSlowdownS = 20.0;
 
 // Slows down along the path of `path` from its time t0 so that, after a smooth transition, no
 // point of the rest of the path is flown faster than max_speed_mps: the same curve, re-timed by a
@@ -36,8 +38,8 @@ constexpr double kMinSlowdownRatio = 0.1;
 // minimum-jerk pieces; it ends where the path ends, at rest. What the arbiter commits when the
 // speed it allows falls below the committed trajectory's (answers come late). Empty when the
 // path is already slow enough (its top speed after t0 within max_speed_mps x (1 + tolerance)),
-// too short to slow down on, or max_speed_mps is below kMinSlowdownRatio of that top speed (then
-// stop instead).
+// too short to slow down on, or max_speed_mps is below kMinSlowdownRatio of that top speed or the
+// slowed rest would last longer than kLongestSlowdownS (then stop instead).
 Trajectory makeSlowdownTrajectory(const Trajectory& path, double t0, double max_speed_mps,
                                   double max_acc_mps2, double tolerance = 0.0);
 

@@ -262,6 +262,10 @@ class Arbiter {
   // (firstUnknownWithinReach) if the stop began extra_s after the current replan lead; nothing
   // when the reach is mapped, or the committed trajectory is a stop (chosen as the safest).
   std::optional<double> unmappedAhead(int64_t now, double extra_s) const;
+  // Whether a danger on the committed trajectory lies on what the vehicle flies: with a backup
+  // stop, only an obstacle on the backup or unmapped space within its reach counts; one beyond
+  // the backup stop is answered already (the vehicle stops before it unless a mode answers).
+  bool dangerOnFlownTrajectory(int64_t now) const;
   KinematicState stateAt(int64_t utime) const;
   // What the vehicle flies: the committed trajectory, or its backup (Committed::backup).
   const Trajectory& flownTrajectory() const;
