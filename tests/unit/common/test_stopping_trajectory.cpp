@@ -448,18 +448,14 @@ TEST(SlowdownTrajectory, NothingToDoWhenThePathIsSlowEnough) {
 
 // Every failed round slows what the last one slowed: the curve is re-timed longer each time, but
 // never past kLongestSlowdownS, so its fit (and every check of it) stays bounded.
-TEST(SlowdownTrajectory, SlowingASlowdownAgainEndsBeforeItLastsTooLong) {
-  mmh::Trajectory path = steadyPath(3.0, 0.0);  // 30 m in 10 s
-  int slowdowns = 0;
-  for (int round = 0; round < 20; ++round) {
-    const double speed = path.velocity(0.1).norm();
-    mmh::Trajectory slow = mmh::makeSlowdownTrajectory(path, 0.1, 0.7 * speed, 2.0);
-    if (slow.empty()) break;
-    ++slowdowns;
-    EXPECT_LE(slow.duration(), mmh::kLongestSlowdownS);
-    EXPECT_LT((slow.position(slow.duration()) - path.position(path.duration())).norm(), 1e-6);
-    path = std::move(slow);
+TEST(SlowdownTrajectory, NoSlowdownLastsLongerThanTheLongestAllowed) {
+  const mmh::Trajectory path = steadyPath(3.0, 0.0);  // 30 m in 10 s
+  int made = 0;
+  for (double speed = 3.0 * mmh::kMinSlowdownRatio; speed < 1.5; speed += 0.01) {
+    const mmh::Trajectory slow = mmh::makeSlowdownTrajectory(path, 0.0, speed, 2.0);
+    if (slow.empty()) continue;
+    ++made;
+    EXPECT_LE(slow.duration(), mmh::kLongestSlowdownS) << "at " << speed << " m/s";
   }
-  EXPECT_GE(slowdowns, 2);  // 10 s -> 14 s -> 20 s would be the third
-  EXPECT_LT(slowdowns, 20);
+  EXPECT_GT(made, 50);
 }

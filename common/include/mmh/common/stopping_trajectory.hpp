@@ -30,7 +30,7 @@ Trajectory makeStoppingTrajectory(const Trajectory& path, double t0, double max_
 // Below this share of the top speed a slowdown is not made (makeSlowdownTrajectory).
 constexpr double kMinSlowdownRatio = 0.1;
 // Nor one that would take longer than this (s).
-constexpr double kLongestSlowdownS = 20.0;
+constexpr double kLongestSlowdownS = 60.0;
 
 // Slows down along the path of `path` from its time t0 so that, after a smooth transition, no
 // point of the rest of the path is flown faster than max_speed_mps: the same curve, re-timed by a
