@@ -58,6 +58,7 @@ void MappingNode::onPointcloud(const pointcloud_t& msg) {
   local_map_t out = toLocalMap(r.map);
   ctx_.publish(channels::kLocalMap, out);
   ctx_.increment(r.map.keyframe ? "keyframes" : "deltas");
+  mapper_.maintain();
   last_compute_us_ = wallTimeUs() - t0;
   ctx_.increment("compute_us_total", last_compute_us_);
 }

@@ -49,7 +49,16 @@ void Mapper::setVehiclePosition(const Eigen::Vector3d& position) {
   have_vehicle_ = true;
 }
 
+void Mapper::maintain() {
+  if (!maintenance_due_) return;
+  // Once per keyframe: bring the tree up to date and free the memory the window left behind.
+  map_.flush();
+  map_.pruneOutsideWindow();
+  maintenance_due_ = false;
+}
+
 Mapper::Result Mapper::processScan(const ScanInput& scan, int64_t utime) {
+  maintain();
   Result result;
   result.error = filterScan(scan, params_, &filtered_, &result.filter, &result.reason);
   if (result.error != ScanError::kNone) return result;
@@ -66,9 +75,7 @@ Mapper::Result Mapper::processScan(const ScanInput& scan, int64_t utime) {
     last_keyframe_seq_ = map_seq_;
     last_keyframe_utime_ = utime;
     keyframe_requested_ = false;
-    // Once per keyframe: bring the tree up to date and free the memory the window left behind.
-    map_.flush();
-    map_.pruneOutsideWindow();
+    maintenance_due_ = true;
   } else {
     result.map = nextDelta();
   }

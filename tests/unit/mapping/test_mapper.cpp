@@ -2,6 +2,7 @@
 // detected and healed by the next keyframe, deltas stay small in steady flight.
 #include <gtest/gtest.h>
 
+#include <octomap/OcTree.h>
 #include <algorithm>
 
 #include "mapping_node.hpp"
@@ -145,4 +146,48 @@ TEST(Mapper, DeltasInSteadyFlightAreSmall) {
   }
   EXPECT_LT(max_delta, 64u * 1024u);
   EXPECT_GT(keyframe, max_delta);
+}
+
+// The node sends a keyframe before the upkeep it calls for (maintain()): the messages are the
+// same whether the upkeep runs right after each keyframe or only at the next scan, and after it
+// the tree holds every known cell of the window.
+TEST(Mapper, UpkeepAfterAKeyframeChangesNoMessage) {
+  Flight flight;
+  mmh::mapping::MappingParams params;
+  params.window_recenter_m = 0.5;
+  mmh::mapping::Mapper early(params), late(params);
+  int upkeeps = 0;
+  for (size_t k = 0; k < flight.scans.size(); ++k) {
+    const auto& scan = flight.scans[k];
+    early.setVehiclePosition(scan.position);
+    late.setVehiclePosition(scan.position);
+    const int64_t utime = kT0 + static_cast<int64_t>(k) * kFrameUs;
+    const auto a = early.processScan(mmh::test::inputOf(scan), utime);
+    const auto b = late.processScan(mmh::test::inputOf(scan), utime);
+    ASSERT_EQ(mmh::toLocalMap(a.map).runs, mmh::toLocalMap(b.map).runs) << "message " << k;
+    ASSERT_EQ(a.map.keyframe, b.map.keyframe);
+    if (!a.map.keyframe) continue;
+    const size_t leaves_before = early.map().octreeLeaves();
+    early.maintain();
+    ++upkeeps;
+    // Every known window cell now has its leaf in the tree, with the window's state.
+    const mmh::mapping::OccupancyMap& map = early.map();
+    const Eigen::Vector3i size = map.windowSize();
+    int checked = 0;
+    for (int z = 0; z < size.z(); z += 3)
+      for (int y = 0; y < size.y(); y += 3)
+        for (int x = 0; x < size.x(); x += 3) {
+          const Eigen::Vector3i g = map.windowOrigin() + Eigen::Vector3i(x, y, z);
+          const Vector3d p = (g.cast<double>() + Vector3d::Constant(0.5)) * map.resolution();
+          const mmh::Occupancy state = map.stateAt(p);
+          if (state == mmh::Occupancy::kUnknown) continue;
+          const octomap::OcTreeNode* node = map.octree().search(p.x(), p.y(), p.z());
+          ASSERT_NE(node, nullptr) << "message " << k;
+          EXPECT_EQ(map.octree().isNodeOccupied(node), state == mmh::Occupancy::kOccupied);
+          ++checked;
+        }
+    EXPECT_GT(checked, 100);
+    EXPECT_GE(map.octreeLeaves(), leaves_before);
+  }
+  EXPECT_EQ(upkeeps, 3);
 }

@@ -51,6 +51,11 @@ class Mapper {
   // Inserts a scan taken at `utime` (message clock) and makes the next LOCAL_MAP message.
   Result processScan(const ScanInput& scan, int64_t utime);
 
+  // The upkeep a keyframe calls for (writing the window back to the tree, freeing what the window
+  // left behind), which changes no message: called after the keyframe is sent, so that receivers
+  // do not wait for it (else the next processScan does it first).
+  void maintain();
+
   // The next message will be a keyframe (e.g. a receiver asked to resynchronise).
   void requestKeyframe() { keyframe_requested_ = true; }
 
@@ -71,6 +76,7 @@ class Mapper {
   int64_t last_keyframe_utime_ = 0;
   std::deque<std::vector<int64_t>> recent_changes_;  // changed cells of the last deltas
   bool keyframe_requested_ = true;
+  bool maintenance_due_ = false;
 };
 
 }  // namespace mmh::mapping

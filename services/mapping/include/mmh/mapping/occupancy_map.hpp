@@ -77,7 +77,8 @@ class OccupancyMap {
   // State of any point: from the window inside it, from the tree outside.
   Occupancy query(const Eigen::Vector3d& p) const;
   // Writes the window's changed log-odds to their tree leaves (creating leaves for new voxels).
-  // Done before every window move and by Mapper at every keyframe; returns the leaves created.
+  // Done before every window move and by Mapper::maintain() after every keyframe; returns the
+  // leaves created.
   size_t flush();
   // The tree; its leaves inside the window are current after flush().
   const octomap::OcTree& octree() const;
