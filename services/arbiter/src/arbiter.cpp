@@ -140,7 +140,6 @@ void Arbiter::onMapUpdated(const VoxelGrid& grid, int64_t map_seq, int64_t map_u
     }
     if (threat_s) {
       collision_eta_s_ = collision_eta_s_ ? std::min(*collision_eta_s_, *threat_s) : *threat_s;
-      danger_map_seq_ = map_seq;
       if (!threat_seen_utime_ && dangerOnFlownTrajectory(now_)) threat_seen_utime_ = map_utime;
     } else {
       // The danger a failed round left unanswered is gone from this map: no commit answers it.
@@ -365,11 +364,8 @@ void Arbiter::evaluate(int64_t now) {
   const bool braking_in_stop =
       committed_.mode == Mode::kStop && odometry_->velocity.norm() > params_.braking_speed_mps;
   const bool is_stuck = stuck != StuckResponse::kNone;
-  // A danger on this map is pending until every mode of the chain has been asked on it: the
-  // round started for it took collision_eta_s_, but a retry on the same map must not wait.
-  const bool danger_pending = view.collision_eta_s.has_value() || danger_map_seq_ == map_seq_;
-  if (retryThrottled(trigger, braking_in_stop, danger_pending, is_stuck, view.since_last_round_s,
-                     params_)) {
+  if (retryThrottled(trigger, braking_in_stop, view.collision_eta_s.has_value(), is_stuck,
+                     view.since_last_round_s, params_)) {
     return;
   }
   const std::optional<double> since_back_off =

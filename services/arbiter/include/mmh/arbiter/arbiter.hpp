@@ -290,10 +290,7 @@ class Arbiter {
   // Committed trajectory and planning.
   Committed committed_;
   std::optional<Round> round_;
-  std::optional<double> collision_eta_s_;  // a threatening collision awaits its round
-  // The newest map that showed a danger on the committed trajectory: while it is the newest, the
-  // retries of the fallback chain are not held back (the danger is there, not a guess).
-  std::optional<int64_t> danger_map_seq_;
+  std::optional<double> collision_eta_s_;     // a threatening collision awaits its round
   std::string threat_note_;                   // what the threat is, when not an obstacle
   std::optional<int64_t> threat_seen_utime_;  // map time of the danger not yet answered
   FallbackChain chain_;
