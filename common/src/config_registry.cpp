@@ -362,6 +362,9 @@ std::vector<KeySpec> buildKeys() {
            "A back-off target (recently flown free space) is at least this far away"),
       real("arbiter.backoff_clearance_m", 0.0, 2.0, "0.15",
            "... and keeps this much more than map.inflation_m from obstacles"),
+      real("arbiter.retrace_speed_mps", 0.05, 5.0, "0.5",
+           "No mode answers a back-off: the vehicle flies back the way it came at about this "
+           "speed"),
       real("arbiter.goal_relocate_radius_m", 0.0, 10.0, "1.5",
            "A goal inside an obstacle's margin moves to the nearest free point this near, else is "
            "refused"),

@@ -179,6 +179,7 @@ void ArbiterNode::flush() {
   ctx_.setCounter("failed_round_slowdowns", n.failed_round_slowdowns);
   ctx_.setCounter("swerving_stops", n.swerving_stops);
   ctx_.setCounter("backup_stops", n.backup_stops);
+  ctx_.setCounter("retraces", n.retraces);
   // Latencies as gauges (ms), so that mmh-top and a log show what the budget sees.
   auto milliseconds = [](double seconds) { return static_cast<int64_t>(seconds * 1e3); };
   ctx_.setCounter("answer_latency_p99_ms",

@@ -7,6 +7,7 @@
 
 #include "mmh/arbiter/goal_placement.hpp"
 #include "mmh/arbiter/local_target.hpp"
+#include "mmh/arbiter/retrace.hpp"
 #include "mmh/common/collision_check.hpp"
 #include "mmh/common/geofence.hpp"
 #include "mmh/common/stopping_trajectory.hpp"
@@ -27,9 +28,11 @@ constexpr double kSameGoalDistanceM = 1e-6;  // a goal message repeated, not a m
 constexpr int kBackupSearchSteps = 6;
 constexpr double kBackupHorizonS = 3.0;
 
-// Recently flown positions, 5 per second over the last 20 s, are the back-off candidates.
+// Recently flown positions, 20 per second over the last 20 s, are the back-off candidates.
 constexpr double kBackOffHistoryS = 20.0;
-constexpr double kBackOffSamplePeriodS = 0.2;
+constexpr double kBackOffSamplePeriodS = 0.05;
+// The way back along them keeps points this far apart (hovering leaves many on one spot).
+constexpr double kRetraceSpacingM = 0.1;
 
 Arbiter::Arbiter(const ArbiterParams& params)
     : params_(params),
@@ -212,6 +215,12 @@ bool Arbiter::collisionAhead(int64_t now) const {
 
 std::optional<double> Arbiter::committedCollisionTime(double from_s, double to_s) const {
   const Trajectory& t = committed_.trajectory;
+  if (committed_.retrace) {
+    for (double s = from_s; s <= to_s; s += params_.check_step_s) {
+      if (!keepsEscapeDistance(*grid_, t.position(s), committed_.escape_min_distance_m)) return s;
+    }
+    return std::nullopt;
+  }
   const double escape_end = std::min(to_s, committed_.escape_until_s);
   if (from_s < escape_end) {
     if (const auto hit =
@@ -269,7 +278,9 @@ bool Arbiter::dangerOnFlownTrajectory(int64_t now) const {
 }
 
 std::optional<double> Arbiter::unmappedAhead(int64_t now, double extra_s) const {
-  if (!grid_ || !hasCommitted() || committed_.mode == Mode::kStop) return std::nullopt;
+  // A retrace runs where the vehicle has flown: mapped as it went, or passed by the airframe.
+  if (!grid_ || !hasCommitted() || committed_.mode == Mode::kStop || committed_.retrace)
+    return std::nullopt;
   const double elapsed = std::max(0.0, (now - committed_.start_utime) * kUs);
   const auto at = firstUnknownWithinReach(committed_.trajectory, elapsed,
                                           budget_.replan_lead_s + extra_s, *grid_, params_);
@@ -463,6 +474,7 @@ void Arbiter::startRound(Trigger trigger, const std::vector<Mode>& modes, int64_
   if (back_off) {
     round.target = *back_off;
     round.target_is_goal = false;
+    round.backs_off = true;
     last_backoff_utime_ = now;
     ++counters_.back_offs;
     round.note = "stuck for " +
@@ -663,6 +675,10 @@ void Arbiter::decide(int64_t now, bool by_deadline) {
     pushDecision(d);
     return;
   }
+  if (round.backs_off) {
+    d.detail = notes;
+    if (retraceOutOfTheSpot(round, d)) return;
+  }
   // The danger stays unanswered: the retry, or the stop, answers it.
   if (round.threat_seen_utime &&
       (!threat_seen_utime_ || *round.threat_seen_utime < *threat_seen_utime_)) {
@@ -683,6 +699,50 @@ void Arbiter::decide(int64_t now, bool by_deadline) {
   } else {
     swerveIfStopMeetsObstacle(now, notes, round.trigger);
   }
+}
+
+bool Arbiter::retraceOutOfTheSpot(const Round& round, DecisionOut& d) {
+  if (!grid_ || now_ > round.start.start_utime || odometryStale(now_)) return false;
+  const KinematicState& start = round.start.state;
+  const std::vector<Eigen::Vector3d> route =
+      progress_.backOffRoute(*grid_, start.position, params_.backoff_min_distance_m,
+                             params_.inflation_m + params_.backoff_clearance_m, kRetraceSpacingM);
+  const std::optional<Trajectory> way = retraceTrajectory(
+      start, route, params_.retrace_speed_mps, params_.max_vel_mps, params_.max_acc_mps2);
+  // Off the occupied cells by the airframe's touch distance, or, where the vehicle has been
+  // nearer than that (the map's cells are coarser than the trunks), no nearer than it has been
+  // (keepsEscapeDistance's tolerance): than its start and the positions it flew through.
+  double min_distance_m = escapeMinDistance(*grid_, start.position, stopTouchDistance());
+  for (const Eigen::Vector3d& flown : route) {
+    min_distance_m = std::min(min_distance_m, occupiedDistance(*grid_, flown, min_distance_m));
+  }
+  if (!way || !keepsOffOccupied(*grid_, *way, min_distance_m, params_.check_step_s)) return false;
+  const Geofence fence = geofence();
+  for (double s = 0.0; s <= way->duration(); s += params_.check_step_s) {
+    if (!insideGeofence(fence, way->position(s))) return false;
+  }
+  commit(*way, round.start.start_utime, Mode::kNone, false);
+  committed_.retrace = true;
+  committed_.escape_min_distance_m = min_distance_m;
+  // Flown to its end before the modes plan again (a halfway replan from inside the spot would
+  // lead back into it); a danger on it still asks them at once.
+  committed_.kept_replan_utime =
+      round.start.start_utime + static_cast<int64_t>(way->duration() * 1e6);
+  enterPhase(Phase::kTracking);
+  chain_.reset();
+  ++counters_.retraces;
+  d.outcome = Outcome::kCommitted;
+  d.committed_mode = Mode::kNone;
+  d.trajectory_id = commit_->trajectory_id;
+  d.local_target = route.back();
+  char text[160];
+  std::snprintf(text, sizeof(text),
+                "no mode answered the back-off: flying back the way the vehicle came, %.1f m in "
+                "%.1f s",
+                way->arcLength(0.0, way->duration()), way->duration());
+  d.detail += text;
+  pushDecision(d);
+  return true;
 }
 
 bool Arbiter::stopIfNoTimeLeft(int64_t now, bool by_deadline, const std::string& notes,
@@ -723,6 +783,48 @@ void Arbiter::swerveIfStopMeetsObstacle(int64_t now, const std::string& notes, T
              trigger, &stop);
 }
 
+Trajectory Arbiter::backupAlong(const Trajectory& path, double tb) const {
+  Trajectory backup = tb > 1e-9 ? path.head(tb) : Trajectory();
+  const Trajectory stop =
+      makeStoppingTrajectory(path, tb, params_.max_acc_mps2, params_.max_vel_mps);
+  for (const Piece& piece : stop.pieces()) backup.append(piece);
+  return backup;
+}
+
+std::optional<double> Arbiter::latestBackupStopS(const Trajectory& path, double horizon_s,
+                                                 double margin_s) const {
+  const Geofence fence = geofence();
+  auto clear = [&](const Trajectory& t) {
+    return isClearStop(*grid_, t, params_.check_inflation_m, &fence);
+  };
+  auto stopFrom = [&](double tb) {
+    return makeStoppingTrajectory(path, tb, params_.max_acc_mps2, params_.max_vel_mps);
+  };
+  // Both bisections keep `lo` at a verified clear point: braking at once is (backupAlong(path, 0)
+  // is that stop).
+  if (!clear(stopFrom(0.0))) return std::nullopt;
+  double lo = 0.0, hi = std::min(horizon_s, path.duration());
+  for (int i = 0; i < kBackupSearchSteps; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (clear(stopFrom(mid)) ? lo : hi) = mid;
+  }
+  const double latest = std::max(0.0, lo - margin_s);
+  if (clear(backupAlong(path, latest))) return latest;
+  lo = 0.0;
+  hi = latest;
+  for (int i = 0; i < kBackupSearchSteps; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (clear(backupAlong(path, mid)) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+void Arbiter::setBackup(double backup_stop_s) {
+  committed_.backup = backupAlong(committed_.trajectory, backup_stop_s);
+  committed_.backup_stop_s = backup_stop_s;
+  commit_->trajectory = *committed_.backup;
+}
+
 void Arbiter::flyOnWithBackupStop(int64_t now, Trigger trigger) {
   if (!hasCommitted() || committed_.mode == Mode::kStop || commit_ || round_ || !grid_) return;
   const int64_t start = now + static_cast<int64_t>(budget_.replan_lead_s * 1e6);
@@ -752,55 +854,18 @@ void Arbiter::flyOnWithBackupStop(int64_t now, Trigger trigger) {
       slowed_to_mps = slower_mps;
     }
   }
-  // Braking along the path from tb; the backup is the path up to tb, then that stop.
-  const Geofence fence = geofence();
-  auto stopFrom = [&](double tb) {
-    return makeStoppingTrajectory(path, tb, params_.max_acc_mps2, params_.max_vel_mps);
-  };
-  auto backupFrom = [&](double tb) {
-    Trajectory backup = tb > 1e-9 ? path.head(tb) : Trajectory();
-    const Trajectory stop = stopFrom(tb);
-    for (const Piece& piece : stop.pieces()) backup.append(piece);
-    return backup;
-  };
-  auto clear = [&](const Trajectory& t) {
-    return isClearStop(*grid_, t, params_.check_inflation_m, &fence);
-  };
-  // The latest tb before the danger whose stop is clear (isClearStop: the known obstacles, known
-  // space, the geofence), by bisection; then stop_decision_margin_s earlier (the margin a waiting
-  // stop keeps for what later maps show), where the whole backup must be clear.
+  // Within the first kBackupHorizonS of the path, before the danger it meets.
   const double search_end = std::min(path.duration(), kBackupHorizonS);
   const auto path_hit = firstCollisionTime(*grid_, path, 0.0, search_end);
-  const double horizon = path_hit ? *path_hit : search_end;
-  std::optional<double> backup_s;
-  // Both bisections keep `lo` at a verified clear point: braking at once is (backupFrom(0) is
-  // that stop).
-  if (params_.backup_stop && clear(stopFrom(0.0))) {
-    double lo = 0.0, hi = horizon;
-    for (int i = 0; i < kBackupSearchSteps; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (clear(stopFrom(mid)) ? lo : hi) = mid;
-    }
-    const double latest = std::max(0.0, lo - params_.stop_decision_margin_s);
-    if (clear(backupFrom(latest))) {
-      backup_s = latest;
-    } else {
-      lo = 0.0;
-      hi = latest;
-      for (int i = 0; i < kBackupSearchSteps; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (clear(backupFrom(mid)) ? lo : hi) = mid;
-      }
-      backup_s = lo;
-    }
-  }
+  const std::optional<double> backup_s =
+      params_.backup_stop ? latestBackupStopS(path, path_hit ? *path_hit : search_end,
+                                              params_.stop_decision_margin_s)
+                          : std::nullopt;
   if (!backup_s && slowed_to_mps == 0.0) return;  // nothing new: the stop waits as it is
   const bool ends_at_goal = committed_.ends_at_goal;
   commit(path, start, committed_.mode, ends_at_goal);
   if (backup_s) {
-    committed_.backup = backupFrom(*backup_s);
-    committed_.backup_stop_s = *backup_s;
-    commit_->trajectory = *committed_.backup;
+    setBackup(*backup_s);
     ++counters_.backup_stops;
   }
   const Trajectory& flown = flownTrajectory();

@@ -100,6 +100,7 @@ ArbiterParams loadArbiterParams(const Config& config) {
   p.stuck_after_s = config.getDouble("arbiter.stuck_after_s");
   p.stuck_retry_period_s = config.getDouble("arbiter.stuck_retry_period_s");
   p.backoff_min_distance_m = config.getDouble("arbiter.backoff_min_distance_m");
+  p.retrace_speed_mps = config.getDouble("arbiter.retrace_speed_mps");
   p.backoff_clearance_m = config.getDouble("arbiter.backoff_clearance_m");
   p.give_up_s = config.getDouble("arbiter.give_up_s");
   p.goal_relocate_radius_m = config.getDouble("arbiter.goal_relocate_radius_m");

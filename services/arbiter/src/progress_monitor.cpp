@@ -40,4 +40,19 @@ std::optional<Eigen::Vector3d> ProgressMonitor::backOffPoint(const VoxelGrid& gr
   return std::nullopt;
 }
 
+std::vector<Eigen::Vector3d> ProgressMonitor::backOffRoute(const VoxelGrid& grid,
+                                                           const Eigen::Vector3d& from,
+                                                           double min_distance_m,
+                                                           double clearance_m,
+                                                           double spacing_m) const {
+  std::vector<Eigen::Vector3d> route{from};
+  for (auto it = history_.rbegin(); it != history_.rend(); ++it) {
+    const bool last = (it->position - from).norm() >= min_distance_m &&
+                      isClearOf(grid, it->position, clearance_m);
+    if (last || (it->position - route.back()).norm() >= spacing_m) route.push_back(it->position);
+    if (last) return route;
+  }
+  return {};
+}
+
 }  // namespace mmh::arbiter

@@ -831,6 +831,63 @@ TEST_F(ArbiterRules, AStuckVehicleBacksOffAskingEveryModeOfTheChainAtOnce) {
   }
 }
 
+// When no mode answers the back-off either (a gap the mapped outlines have closed behind the
+// vehicle), it flies back the way it came, slowly, to the back-off point, and only then do the
+// modes plan again.
+TEST_F(ArbiterRules, ABackOffNoModeAnswersIsFlownBackTheWayTheVehicleCame) {
+  double t1 = 0.0;
+  auto a = stuckBeforeAPillar(&t1);
+  std::vector<Vector3d> flown;
+  std::optional<CommitOut> retrace;
+  Vector3d back_off_target = Vector3d::Zero();
+  double t = t1;
+  for (; t < t1 + 10.0 && !retrace; t += 0.01) {
+    const int64_t now = at(t);
+    if (std::lround(t * 100) % 10 == 0) a->onMapUpdated(grid_, ++map_seq_, now, now);
+    const KinematicState s = a->committed().state((now - a->committedStartUtime()) * 1e-6);
+    flown.push_back(s.position);
+    a->onOdometry(s, now);
+    const std::vector<PlanRequestOut> round = a->takeRequests();
+    if (a->counters().back_offs > 0 && !round.empty()) back_off_target = round[0].target;
+    for (const auto& r : round) a->onAnswer(failedAnswer(r), now + 1000);
+    if (auto c = a->takeCommit(); c && c->mode == Mode::kNone) retrace = c;
+  }
+  ASSERT_TRUE(retrace.has_value()) << "no retrace";
+  EXPECT_EQ(a->counters().retraces, 1);
+  EXPECT_EQ(a->counters().back_offs, 1);
+  bool said = false;
+  for (const auto& d : a->takeDecisions())
+    said |= d.detail.find("flying back") != std::string::npos;
+  EXPECT_TRUE(said);
+  // Checked here: from where the vehicle is to the back-off point, at rest there, within the
+  // limits, along positions it flew (every sample near one), clear of the pillar.
+  const Trajectory& way = retrace->trajectory;
+  EXPECT_LT((way.position(way.duration()) - back_off_target).norm(), 1e-9);
+  EXPECT_LT(way.velocity(way.duration()).norm(), 1e-9);
+  EXPECT_LE(way.maxSpeed(), params_.max_vel_mps);
+  EXPECT_LE(way.maxAcceleration(), params_.max_acc_mps2);
+  EXPECT_LT(way.position(way.duration()).x(), way.position(0.0).x() - 1.0);  // back, away
+  for (double u = 0.0; u <= way.duration(); u += 0.05) {
+    double nearest = 1e9;
+    for (const Vector3d& p : flown) nearest = std::min(nearest, (p - way.position(u)).norm());
+    EXPECT_LT(nearest, 0.1) << "at " << u << " s of the way back";
+    EXPECT_GT(mmh::occupiedDistance(grid_, way.position(u), 1.0), 0.4);
+  }
+  // Flown to its end with no request (no halfway replan from inside the spot), then the modes
+  // are asked again from the back-off point.
+  const double end_s = t + way.duration();
+  std::vector<PlanRequestOut> next;
+  for (; t < end_s + 1.0 && next.empty(); t += 0.01) {
+    const int64_t now = at(t);
+    if (std::lround(t * 100) % 10 == 0) a->onMapUpdated(grid_, ++map_seq_, now, now);
+    a->onOdometry(a->committed().state((now - a->committedStartUtime()) * 1e-6), now);
+    next = a->takeRequests();
+  }
+  ASSERT_FALSE(next.empty());
+  EXPECT_GT(t, end_s - 0.05);
+  EXPECT_LT((next[0].start.position - back_off_target).norm(), 0.05);
+}
+
 TEST_F(ArbiterRules, UnmappedSpaceWithinStoppingReachAsksARoundThenStopsBeforeIt) {
   auto a = started(Policy::kMmh);
   KinematicState before;

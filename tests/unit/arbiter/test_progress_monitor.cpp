@@ -53,3 +53,32 @@ TEST(ProgressMonitor, BacksOffToTheNewestFlownPointFarEnoughAndClear) {
   EXPECT_FALSE(mmh::arbiter::isClearOf(grid, *q + Vector3d(0.2, 0, 0), 0.45));  // next sample
   EXPECT_FALSE(m.backOffPoint(grid, Vector3d(4, 0, 1.5), 10.0, 0.45).has_value());
 }
+
+TEST(ProgressMonitor, TheRouteBackIsTheFlownWayNewestFirstEndingAtTheBackOffPoint) {
+  mmh::VoxelGrid grid(0.1, Eigen::Vector3i(-50, -50, 0), Eigen::Vector3i(100, 100, 30));
+  for (int64_t i = 0; i < grid.numCells(); ++i) grid.setLinear(i, mmh::Occupancy::kFree);
+  ProgressMonitor m(0.5, 20.0, 0.05);
+  m.restart(at(0));
+  // Up 1 m, then 1 m along x, then hovering at (1, 0, 2.5) for 3 s.
+  auto tick = [](int k) { return int64_t{50'000} * k; };  // 0.05 s steps, exactly
+  for (int k = 0; k <= 20; ++k) m.observe(tick(k), Vector3d(0, 0, 1.5 + 0.05 * k), 10.0);
+  for (int k = 1; k <= 20; ++k) m.observe(tick(20 + k), Vector3d(0.05 * k, 0, 2.5), 10.0);
+  for (int k = 1; k <= 60; ++k) m.observe(tick(40 + k), Vector3d(1.0, 0, 2.5), 10.0);
+  const Vector3d here(1.0, 0.0, 2.5);
+  const auto route = m.backOffRoute(grid, here, 1.2, 0.45, 0.2);
+  const auto point = m.backOffPoint(grid, here, 1.2, 0.45);
+  ASSERT_TRUE(point.has_value());
+  ASSERT_GE(route.size(), 3u);
+  EXPECT_EQ(route.front(), here);
+  EXPECT_EQ(route.back(), *point);
+  EXPECT_GE((route.back() - here).norm(), 1.2);
+  for (size_t i = 1; i + 1 < route.size(); ++i) {
+    EXPECT_GE((route[i] - route[i - 1]).norm(), 0.2 - 1e-9);  // the hover is one point
+    EXPECT_LE((route[i] - route[i - 1]).norm(), 0.3 + 1e-6);  // no flown stretch skipped
+  }
+  // Back along x first, then down: the corner was flown through.
+  bool corner = false;
+  for (const Vector3d& p : route) corner |= (p - Vector3d(0, 0, 2.5)).norm() < 1e-9;
+  EXPECT_TRUE(corner);
+  EXPECT_TRUE(m.backOffRoute(grid, here, 10.0, 0.45, 0.2).empty());
+}

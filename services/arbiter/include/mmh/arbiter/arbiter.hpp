@@ -95,8 +95,9 @@ struct ArbiterCounters {
   int back_offs = 0;                 // rounds that backed off to free space while stuck
   int slowdowns = 0;  // committed trajectories slowed to the latency budget's speed limit
   int failed_round_slowdowns = 0;  // ... slowed because every mode failed with danger ahead
-  int swerving_stops = 0;    // stops under way replaced by one that swerves round a new obstacle
-  int backup_stops = 0;      // failed rounds answered by flying on with a verified backup stop
+  int swerving_stops = 0;  // stops under way replaced by one that swerves round a new obstacle
+  int backup_stops = 0;    // failed rounds answered by flying on with a verified backup stop
+  int retraces = 0;        // back-offs flown along the way the vehicle came, when no mode answered
   int degraded_periods = 0;  // times the latency budget became degraded
   int moved_goals = 0;       // goals moved out of an obstacle's margin
   int kept_trajectories =
@@ -177,6 +178,9 @@ class Arbiter {
     // becomes the committed stop.
     std::optional<Trajectory> backup;
     double backup_stop_s = 0.0;
+    // The arbiter's own way back along the flown path (retraceOutOfTheSpot): watched for the
+    // occupied cells only, as it runs inside the planners' margin where the vehicle has flown.
+    bool retrace = false;
   };
   // A planning round in flight: requests sent, answers collected until all came or the deadline.
   struct Round {
@@ -187,8 +191,9 @@ class Arbiter {
     bool target_is_goal = false;
     std::vector<PlanRequestOut> requests;
     std::vector<ModeAnswer> answers;
-    std::string note;      // why this round has an unusual target (a back-off)
-    bool repairs = false;  // re-plans the rest of the committed trajectory, to its end
+    std::string note;        // why this round has an unusual target (a back-off)
+    bool repairs = false;    // re-plans the rest of the committed trajectory, to its end
+    bool backs_off = false;  // the stuck detector's back-off (target: recently flown free space)
     std::optional<int64_t> threat_seen_utime;  // the danger this round answers, if any
   };
 
@@ -238,6 +243,19 @@ class Arbiter {
   // answer on a later map replaces it; else the vehicle brakes there (a kStopping decision).
   // Without such a point, the slowed path alone.
   void flyOnWithBackupStop(int64_t now, Trigger trigger);
+  // A back-off round in which no mode answered: back to the back-off point along the positions
+  // flown since (ProgressMonitor::backOffRoute), slowly (retrace_speed_mps), when that keeps the
+  // airframe off every occupied cell. The modes plan again from there.
+  bool retraceOutOfTheSpot(const Round& round, DecisionOut& d);
+  // The path up to tb, then the stop braking along it from there.
+  Trajectory backupAlong(const Trajectory& path, double tb) const;
+  // The latest tb within horizon_s from which braking along `path` is clear (isClearStop: the
+  // known obstacles, known space, the geofence), by bisection; then margin_s earlier, where the
+  // whole backup (backupAlong) must be clear. Nothing when braking at once is not clear.
+  std::optional<double> latestBackupStopS(const Trajectory& path, double horizon_s,
+                                          double margin_s) const;
+  // The committed trajectory is flown as backupAlong(it, backup_stop_s) (the commit just made).
+  void setBackup(double backup_stop_s);
   // The vehicle has reached the backup stop of the committed trajectory: report the stop.
   void reportBrakingOnBackupStop(int64_t now);
   // A stop begun stop_decision_margin_s later would still end clear of the known obstacles.

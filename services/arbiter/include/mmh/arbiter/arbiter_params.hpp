@@ -115,6 +115,7 @@ struct ArbiterParams {
   double stuck_after_s = 4.0;           // no progress this long: stuck
   double stuck_retry_period_s = 1.0;    // retries while stuck come at most this often
   double backoff_min_distance_m = 1.0;  // a back-off target is at least this far away
+  double retrace_speed_mps = 0.5;       // no mode answers a back-off: the way back flown this fast
   double backoff_clearance_m = 0.15;    // ... and this much clearer than inflation_m
   double give_up_s = 30.0;              // no progress this long: unreachable, hold
   double unreachable_retry_s = 5.0;     // while unreachable, one retry this often

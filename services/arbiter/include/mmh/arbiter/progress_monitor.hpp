@@ -10,6 +10,7 @@
 #include <deque>
 #include <limits>
 #include <optional>
+#include <vector>
 
 #include "mmh/common/voxel_grid.hpp"
 
@@ -32,6 +33,11 @@ class ProgressMonitor {
   // clearance_m from every occupied cell of `grid`: known free space to back off to.
   std::optional<Eigen::Vector3d> backOffPoint(const VoxelGrid& grid, const Eigen::Vector3d& from,
                                               double min_distance_m, double clearance_m) const;
+  // The way the vehicle came, back to that point: `from`, then the positions flown since it,
+  // newest first, at least spacing_m apart, ending at the point. Empty when there is none.
+  std::vector<Eigen::Vector3d> backOffRoute(const VoxelGrid& grid, const Eigen::Vector3d& from,
+                                            double min_distance_m, double clearance_m,
+                                            double spacing_m) const;
 
  private:
   struct Sample {
