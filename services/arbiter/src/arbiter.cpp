@@ -702,8 +702,12 @@ void Arbiter::decide(int64_t now, bool by_deadline) {
 }
 
 bool Arbiter::retraceOutOfTheSpot(const Round& round, DecisionOut& d) {
-  if (!grid_ || now_ > round.start.start_utime || odometryStale(now_)) return false;
+  // A vehicle still braking would first run on towards what it is stuck at: it is retraced
+  // from rest, at the next back-off.
   const KinematicState& start = round.start.state;
+  if (!grid_ || now_ > round.start.start_utime || odometryStale(now_) ||
+      start.velocity.norm() > params_.braking_speed_mps)
+    return false;
   const std::vector<Eigen::Vector3d> route =
       progress_.backOffRoute(*grid_, start.position, params_.backoff_min_distance_m,
                              params_.inflation_m + params_.backoff_clearance_m, kRetraceSpacingM);

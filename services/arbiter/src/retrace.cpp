@@ -9,7 +9,7 @@ namespace mmh::arbiter {
 namespace {
 
 constexpr double kMinStepM = 0.05;       // route points nearer than this to the one before merge
-constexpr double kMinPieceS = 0.3;       // shortest piece
+constexpr double kMinPieceS = 0.2;       // shortest piece
 constexpr double kEndPieceFactor = 2.0;  // the first and last pieces: speeding up, slowing down
 constexpr double kSlowerFactor = 1.15;   // durations grow by this until the limits hold
 constexpr int kMaxSlowdowns = 30;
@@ -21,6 +21,8 @@ std::optional<Trajectory> retraceTrajectory(const KinematicState& start,
                                             double speed_mps, double max_vel_mps,
                                             double max_acc_mps2) {
   if (route.size() < 2 || speed_mps <= 0.0) return std::nullopt;
+  // Every flown point a waypoint: a curve through fewer rounds the corners of the way the
+  // vehicle came, and that way may be a gap no wider than the airframe.
   std::vector<Eigen::Vector3d> points{start.position};
   for (size_t i = 1; i < route.size(); ++i) {
     if ((route[i] - points.back()).norm() >= kMinStepM) points.push_back(route[i]);
