@@ -703,10 +703,11 @@ void Arbiter::decide(int64_t now, bool by_deadline) {
 
 bool Arbiter::retraceOutOfTheSpot(const Round& round, DecisionOut& d) {
   // A vehicle still braking would first run on towards what it is stuck at: it is retraced
-  // from rest, at the next back-off.
+  // from rest, at the next back-off. Nor once the goal is given up: only a mode's answer gives
+  // the flight another chance (a way back would be a new one each time, without end).
   const KinematicState& start = round.start.state;
   if (!grid_ || now_ > round.start.start_utime || odometryStale(now_) ||
-      start.velocity.norm() > params_.braking_speed_mps)
+      start.velocity.norm() > params_.braking_speed_mps || phase_ == Phase::kUnreachable)
     return false;
   const std::vector<Eigen::Vector3d> route =
       progress_.backOffRoute(*grid_, start.position, params_.backoff_min_distance_m,
