@@ -178,8 +178,9 @@ class Arbiter {
     // becomes the committed stop.
     std::optional<Trajectory> backup;
     double backup_stop_s = 0.0;
-    // The arbiter's own way back along the flown path (retraceOutOfTheSpot): watched for the
-    // occupied cells only, as it runs inside the planners' margin where the vehicle has flown.
+    // The arbiter's own way back along the flown path (retraceOutOfTheSpot): watched only for
+    // occupied cells nearer than escape_min_distance_m (the nearest it was found to come), as it
+    // runs inside the planners' margin where the vehicle has flown.
     bool retrace = false;
   };
   // A planning round in flight: requests sent, answers collected until all came or the deadline.
@@ -244,8 +245,9 @@ class Arbiter {
   // Without such a point, the slowed path alone.
   void flyOnWithBackupStop(int64_t now, Trigger trigger);
   // A back-off round in which no mode answered: back to the back-off point along the positions
-  // flown since (ProgressMonitor::backOffRoute), slowly (retrace_speed_mps), when that keeps the
-  // airframe off every occupied cell. The modes plan again from there.
+  // flown since (ProgressMonitor::backOffRoute), slowly (retrace_speed_mps), from rest, when that
+  // keeps the airframe off every occupied cell, and not once the goal is given up. The modes plan
+  // again from there. False when nothing was committed.
   bool retraceOutOfTheSpot(const Round& round, DecisionOut& d);
   // The path up to tb, then the stop braking along it from there.
   Trajectory backupAlong(const Trajectory& path, double tb) const;
