@@ -315,6 +315,16 @@ ReplanView Arbiter::replanView(int64_t now) const {
   v.flown_since_last_round_m = (vehiclePosition() - last_round_position_).norm();
   v.to_goal_m = (vehiclePosition() - goal_.position).norm();
   v.retry_mode = chain_.next(map_seq_);
+  // A danger newly mapped on a stop still braking is an emergency: the chain starts again with
+  // EAM, which repairs the way the vehicle is on; SOM from a hard-braking state rarely keeps the
+  // limits, and its failure cost the answer a map period.
+  const auto& chain = chain_.modes();
+  const bool braking_stop = committed_.mode == Mode::kStop && odometry_ &&
+                            odometry_->velocity.norm() > params_.braking_speed_mps;
+  if (v.retry_mode && braking_stop && collision_eta_s_ && chain_.exhausted() &&
+      std::find(chain.begin(), chain.end(), Mode::kEam) != chain.end()) {
+    v.retry_mode = Mode::kEam;
+  }
   v.since_last_round_s = (now - last_round_utime_) * kUs;
   return v;
 }
