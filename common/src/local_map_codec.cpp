@@ -179,6 +179,14 @@ LocalMapReceiver::Result LocalMapReceiver::apply(const local_map_t& msg, std::st
     if (reason) *reason = "old map_seq " + std::to_string(msg.map_seq);
     return Result::kStale;
   }
+  if (synced_ && msg.kind == local_map_t::KIND_KEYFRAME && msg.map_seq == last_seq_ &&
+      msg.header.utime == last_utime_) {
+    // The sender follows a delta with the keyframe of the same scan for receivers that lost
+    // messages; one that applied the delta holds that map already (a restarted sender's
+    // keyframe has another scan time and is applied).
+    if (reason) *reason = "keyframe of map " + std::to_string(msg.map_seq) + ": already built";
+    return Result::kAlreadyBuilt;
+  }
   last_changed_.clear();
   const bool same_geometry =
       have_grid_ && size == grid_.size() && std::abs(msg.resolution_m - grid_.resolution()) <= 1e-9;

@@ -25,6 +25,9 @@ LocalMapReceiver::Result applyAndCount(LocalMapReceiver& receiver, const local_m
     case Result::kStale:
       ctx.increment("map_stale");
       break;
+    case Result::kAlreadyBuilt:
+      ctx.increment("map_keyframes_skipped");
+      break;
     case Result::kRejected:
       ctx.reject("rejected_map", "LOCAL_MAP " + std::to_string(msg.map_seq) + ": " + reason);
       break;

@@ -58,6 +58,12 @@ void MappingNode::onPointcloud(const pointcloud_t& msg) {
   local_map_t out = toLocalMap(r.map);
   ctx_.publish(channels::kLocalMap, out);
   ctx_.increment(r.map.keyframe ? "keyframes" : "deltas");
+  if (r.keyframe_follows) {
+    // Built once the delta is out: a newly mapped obstacle does not wait for the whole window.
+    local_map_t keyframe = toLocalMap(mapper_.keyframe());
+    ctx_.publish(channels::kLocalMap, keyframe);
+    ctx_.increment("keyframes");
+  }
   mapper_.maintain();
   last_compute_us_ = wallTimeUs() - t0;
   ctx_.increment("compute_us_total", last_compute_us_);

@@ -68,19 +68,30 @@ Mapper::Result Mapper::processScan(const ScanInput& scan, int64_t utime) {
   const bool keyframe = keyframe_requested_ || utime - last_keyframe_utime_ >= period_us ||
                         utime < last_keyframe_utime_;
   ++map_seq_;
+  last_scan_utime_ = utime;
+  if (keyframe && map_seq_ == 1) {
+    // Nothing sent before: receivers need the whole window first.
+    result.map = keyframeOf(map_, map_seq_);
+  } else {
+    result.map = nextDelta();
+    result.keyframe_follows = keyframe;
+  }
   if (keyframe) {
     map_.clearChanges();
     recent_changes_.clear();
-    result.map = keyframeOf(map_, map_seq_);
     last_keyframe_seq_ = map_seq_;
     last_keyframe_utime_ = utime;
     keyframe_requested_ = false;
     maintenance_due_ = true;
-  } else {
-    result.map = nextDelta();
   }
   result.map.utime = utime;
   return result;
+}
+
+MapUpdate Mapper::keyframe() const {
+  MapUpdate u = keyframeOf(map_, map_seq_);
+  u.utime = last_scan_utime_;
+  return u;
 }
 
 MapUpdate Mapper::nextDelta() {

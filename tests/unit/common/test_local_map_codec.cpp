@@ -63,6 +63,36 @@ TEST(LocalMapCodec, KeyframePlusDeltasRebuildTheSenderWindow) {
   }
 }
 
+// The mapping service follows a keyframe scan's delta with the whole window of the same map: a
+// receiver that applied the delta skips it, one that lost messages is healed by it, and a
+// restarted sender's keyframe (same map_seq, another scan) is applied.
+TEST(LocalMapCodec, TheKeyframeOfAMapItsDeltaBuiltIsSkipped) {
+  VoxelGrid sender = randomGrid(Vector3i(0, 0, 0), 7);
+  auto stamped = [](mmh::local_map_t msg, int64_t utime) {
+    msg.header.utime = utime;
+    return msg;
+  };
+  LocalMapReceiver rx, lost_it;
+  ASSERT_EQ(rx.apply(stamped(mmh::makeKeyframe(sender, 1), 100)),
+            LocalMapReceiver::Result::kApplied);
+  const std::vector<mmh::CellChange> changes{{5, Occupancy::kOccupied}, {17, Occupancy::kFree}};
+  for (const mmh::CellChange& c : changes) sender.setLinear(c.first, c.second);
+  ASSERT_EQ(rx.apply(stamped(mmh::makeDelta(sender, 2, changes), 200)),
+            LocalMapReceiver::Result::kApplied);
+  const mmh::local_map_t keyframe = stamped(mmh::makeKeyframe(sender, 2), 200);
+  std::string why;
+  EXPECT_EQ(rx.apply(keyframe, &why), LocalMapReceiver::Result::kAlreadyBuilt);
+  EXPECT_NE(why.find("already built"), std::string::npos) << why;
+  EXPECT_TRUE(sameCells(rx.grid(), sender));
+  EXPECT_EQ(lost_it.apply(keyframe), LocalMapReceiver::Result::kApplied);
+  EXPECT_TRUE(sameCells(lost_it.grid(), sender));
+
+  VoxelGrid restarted = randomGrid(Vector3i(0, 0, 0), 8);
+  EXPECT_EQ(rx.apply(stamped(mmh::makeKeyframe(restarted, 2), 300)),
+            LocalMapReceiver::Result::kApplied);
+  EXPECT_TRUE(sameCells(rx.grid(), restarted));
+}
+
 TEST(LocalMapCodec, AKeyframeOnAMapItDiffersFromGivesWhatAFreshDecodeGives) {
   // The receiver holds an old map of the same window size; the keyframe is of another origin and
   // other cells. Only the differing cells are written, yet cells and inflation equal a fresh

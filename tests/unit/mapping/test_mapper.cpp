@@ -1,5 +1,6 @@
 // LOCAL_MAP production: keyframes and deltas rebuild exactly the sender's window, gaps are
-// detected and healed by the next keyframe, deltas stay small in steady flight.
+// detected and healed by the next keyframe, deltas stay small in steady flight, and a keyframe
+// scan sends its delta first.
 #include <gtest/gtest.h>
 
 #include <octomap/OcTree.h>
@@ -38,6 +39,14 @@ struct Flight {
   }
 };
 
+// The messages the node sends for one scan, in order.
+std::vector<mmh::local_map_t> messagesOf(const mmh::mapping::Mapper& mapper,
+                                         const mmh::mapping::Mapper::Result& r) {
+  std::vector<mmh::local_map_t> out{mmh::toLocalMap(r.map)};
+  if (r.keyframe_follows) out.push_back(mmh::toLocalMap(mapper.keyframe()));
+  return out;
+}
+
 }  // namespace
 
 TEST(Mapper, KeyframesAndDeltasRebuildTheSameMap) {
@@ -54,13 +63,20 @@ TEST(Mapper, KeyframesAndDeltasRebuildTheSameMap) {
     ASSERT_EQ(r.error, mmh::mapping::ScanError::kNone);
     EXPECT_EQ(r.map.map_seq, static_cast<int64_t>(k + 1));
     EXPECT_EQ(r.map.utime, kT0 + static_cast<int64_t>(k) * kFrameUs);
-    keyframes += r.map.keyframe;
+    keyframes += r.map.keyframe || r.keyframe_follows;
     moves += r.window_moved;
     std::string why;
-    ASSERT_EQ(receiver.apply(mmh::toLocalMap(r.map), &why), Result::kApplied) << why;
-    // The receiver's window equals the sender's, cell for cell, after every message.
+    const std::vector<mmh::local_map_t> messages = messagesOf(mapper, r);
+    ASSERT_EQ(receiver.apply(messages.front(), &why), Result::kApplied) << why;
+    // The receiver's window equals the sender's, cell for cell, after every scan's first message.
     ASSERT_EQ(receiver.grid().originIndex(), mapper.map().windowOrigin());
     ASSERT_EQ(receiver.grid().rawCells(), mapper.map().windowStates()) << "message " << k;
+    if (messages.size() == 2) {
+      // The whole window of the same map follows: nothing left to apply.
+      EXPECT_EQ(messages.back().map_seq, messages.front().map_seq);
+      EXPECT_EQ(messages.back().header.utime, messages.front().header.utime);
+      EXPECT_EQ(receiver.apply(messages.back()), Result::kAlreadyBuilt);
+    }
   }
   EXPECT_TRUE(flight.scans.size() > 15);
   EXPECT_EQ(keyframes, 3);  // the first, then one per second (15 frames)
@@ -80,9 +96,11 @@ TEST(Mapper, AGapIsDetectedAndTheNextKeyframeHealsIt) {
     mapper.setVehiclePosition(scan.position);
     const auto r = mapper.processScan(mmh::test::inputOf(scan), kT0 + k * kFrameUs);
     if (k == 4) continue;  // lost on the network
-    results.push_back(receiver.apply(mmh::toLocalMap(r.map)));
-    if (r.map.keyframe && k > 4) {
-      EXPECT_EQ(results.back(), Result::kApplied);
+    for (const mmh::local_map_t& msg : messagesOf(mapper, r))
+      results.push_back(receiver.apply(msg));
+    if (r.keyframe_follows) {
+      EXPECT_EQ(results.end()[-2], Result::kWaitingForKeyframe);  // the scan's delta
+      EXPECT_EQ(results.back(), Result::kApplied);                // its keyframe
       EXPECT_EQ(receiver.grid().rawCells(), mapper.map().windowStates());
       break;
     }
@@ -91,7 +109,6 @@ TEST(Mapper, AGapIsDetectedAndTheNextKeyframeHealsIt) {
   EXPECT_EQ(results[3], Result::kApplied);             // message 4 (k = 3)
   EXPECT_EQ(results[4], Result::kGap);                 // k = 5 after the lost k = 4
   EXPECT_EQ(results[5], Result::kWaitingForKeyframe);  // until the keyframe at k = 15
-  EXPECT_EQ(results.back(), Result::kApplied);
   EXPECT_EQ(receiver.gapsDetected(), 1);
 }
 
@@ -108,22 +125,28 @@ TEST(Mapper, LossesShorterThanTheDeltaRepeatAreBridgedExactly) {
     const auto& scan = flight.scans[k];
     mapper.setVehiclePosition(scan.position);
     const auto r = mapper.processScan(mmh::test::inputOf(scan), kT0 + k * kFrameUs);
-    EXPECT_EQ(r.map.keyframe, k == 0 || k == 15) << k;
+    EXPECT_EQ(r.map.keyframe, k == 0) << k;
+    EXPECT_EQ(r.keyframe_follows, k == 15) << k;
     if (std::find(lost.begin(), lost.end(), k) != lost.end()) continue;
-    const Result applied = receiver.apply(mmh::toLocalMap(r.map));
-    results.emplace_back(k, applied);
-    if (applied == Result::kApplied) {
-      // Exactly the sender's window, also right after the losses.
-      ASSERT_EQ(receiver.grid().originIndex(), mapper.map().windowOrigin()) << k;
-      ASSERT_EQ(receiver.grid().rawCells(), mapper.map().windowStates()) << k;
+    for (const mmh::local_map_t& msg : messagesOf(mapper, r)) {
+      const Result applied = receiver.apply(msg);
+      results.emplace_back(k, applied);
+      if (applied == Result::kApplied) {
+        // Exactly the sender's window, also right after the losses.
+        ASSERT_EQ(receiver.grid().originIndex(), mapper.map().windowOrigin()) << k;
+        ASSERT_EQ(receiver.grid().rawCells(), mapper.map().windowStates()) << k;
+      }
     }
   }
-  ASSERT_EQ(results.size(), 10u);
-  for (const auto& [k, result] : results) {
+  ASSERT_EQ(results.size(), 11u);
+  for (size_t i = 0; i < results.size(); ++i) {
+    const auto& [k, result] = results[i];
     if (k == 14)
       EXPECT_EQ(result, Result::kGap) << "three lost in a row are more than the repeat";
+    else if (k == 15 && i + 1 < results.size())
+      EXPECT_EQ(result, Result::kWaitingForKeyframe) << "the delta of the keyframe scan";
     else
-      EXPECT_EQ(result, Result::kApplied) << k;  // k = 15 is the keyframe that heals the gap
+      EXPECT_EQ(result, Result::kApplied) << k;  // the last is the keyframe that heals the gap
   }
   EXPECT_EQ(receiver.lossesBridged(), 2);  // k = 5 and k = 9
   EXPECT_EQ(receiver.gapsDetected(), 1);
@@ -138,18 +161,20 @@ TEST(Mapper, DeltasInSteadyFlightAreSmall) {
     const auto& scan = flight.scans[k];
     mapper.setVehiclePosition(scan.position);
     const auto r = mapper.processScan(mmh::test::inputOf(scan), kT0 + k * kFrameUs);
-    const size_t bytes = static_cast<size_t>(mmh::toLocalMap(r.map).getEncodedSize());
-    if (r.map.keyframe)
-      keyframe = std::max(keyframe, bytes);
-    else if (k > 2)
-      max_delta = std::max(max_delta, bytes);
+    for (const mmh::local_map_t& msg : messagesOf(mapper, r)) {
+      const size_t bytes = static_cast<size_t>(msg.getEncodedSize());
+      if (msg.kind == mmh::local_map_t::KIND_KEYFRAME)
+        keyframe = std::max(keyframe, bytes);
+      else if (k > 2)
+        max_delta = std::max(max_delta, bytes);
+    }
   }
   EXPECT_LT(max_delta, 64u * 1024u);
   EXPECT_GT(keyframe, max_delta);
 }
 
-// The node sends a keyframe before the upkeep it calls for (maintain()): the messages are the
-// same whether the upkeep runs right after each keyframe or only at the next scan, and after it
+// The node sends a keyframe scan's messages before the upkeep it calls for (maintain()): they are
+// the same whether the upkeep runs right after each keyframe or only at the next scan, and after it
 // the tree holds every known cell of the window.
 TEST(Mapper, UpkeepAfterAKeyframeChangesNoMessage) {
   Flight flight;
@@ -164,9 +189,11 @@ TEST(Mapper, UpkeepAfterAKeyframeChangesNoMessage) {
     const int64_t utime = kT0 + static_cast<int64_t>(k) * kFrameUs;
     const auto a = early.processScan(mmh::test::inputOf(scan), utime);
     const auto b = late.processScan(mmh::test::inputOf(scan), utime);
-    ASSERT_EQ(mmh::toLocalMap(a.map).runs, mmh::toLocalMap(b.map).runs) << "message " << k;
-    ASSERT_EQ(a.map.keyframe, b.map.keyframe);
-    if (!a.map.keyframe) continue;
+    const std::vector<mmh::local_map_t> sent_a = messagesOf(early, a), sent_b = messagesOf(late, b);
+    ASSERT_EQ(sent_a.size(), sent_b.size()) << "message " << k;
+    for (size_t i = 0; i < sent_a.size(); ++i)
+      ASSERT_EQ(sent_a[i].runs, sent_b[i].runs) << "message " << k;
+    if (!a.map.keyframe && !a.keyframe_follows) continue;
     early.maintain();
     ++upkeeps;
     // Every known window cell now has its leaf in the tree, with the window's state.

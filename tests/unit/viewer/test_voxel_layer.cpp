@@ -43,6 +43,10 @@ TEST(VoxelLayer, DeltaSendsOnlyTheChangedVoxels) {
   EXPECT_EQ(changes.added, (std::vector<int32_t>{-8, -8, 2}));
   EXPECT_EQ(changes.removed, (std::vector<int32_t>{-9, -8, 3}));
   EXPECT_EQ(layer.numOccupied(), 1u);
+  // The keyframe the mapping service sends after this delta: nothing to draw, nothing refused.
+  ASSERT_TRUE(layer.apply(makeKeyframe(grid, 2), &changes));
+  EXPECT_TRUE(changes.empty());
+  EXPECT_EQ(layer.numOccupied(), 1u);
 }
 
 TEST(VoxelLayer, VoxelsThatLeaveTheWindowStayAndAKeyframeClearsOnlyInsideIt) {

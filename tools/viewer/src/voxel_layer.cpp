@@ -25,7 +25,9 @@ void VoxelLayer::unpack(uint64_t key, int32_t* x, int32_t* y, int32_t* z) {
 bool VoxelLayer::apply(const local_map_t& msg, VoxelChanges* changes, std::string* reason) {
   changes->added.clear();
   changes->removed.clear();
-  if (receiver_.apply(msg, reason) != LocalMapReceiver::Result::kApplied) return false;
+  const LocalMapReceiver::Result result = receiver_.apply(msg, reason);
+  if (result == LocalMapReceiver::Result::kAlreadyBuilt) return true;  // nothing changed
+  if (result != LocalMapReceiver::Result::kApplied) return false;
   resolution_ = receiver_.grid().resolution();
   if (receiver_.lastWasKeyframe())
     applyKeyframe(changes);

@@ -42,6 +42,7 @@ class LocalMapReceiver {
     kWaitingForKeyframe,  // a delta arrived before any keyframe or after a gap: ignored
     kGap,                 // a delta's base_seq is newer than the last applied map: waiting now
     kStale,               // older than or equal to what is applied: ignored
+    kAlreadyBuilt,        // the keyframe of the map its delta already built: ignored
     kRejected,            // malformed message: ignored, state unchanged
   };
 

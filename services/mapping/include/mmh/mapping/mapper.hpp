@@ -1,8 +1,11 @@
 // The mapping pipeline without LCM: scan -> filter (scan_filter.hpp) -> window placement and
-// insertion into the OccupancyMap -> the content of the LOCAL_MAP message (MapUpdate; the node
-// encodes it, mapping_node.hpp toLocalMap), a keyframe (whole window) at least
-// every keyframe_period_s and a delta otherwise: the cells changed since the previous message,
-// and those of the delta_repeat - 1 deltas before it, so that a lost message costs nothing.
+// insertion into the OccupancyMap -> the content of the LOCAL_MAP messages (MapUpdate; the node
+// encodes them, mapping_node.hpp toLocalMap). Every scan gives a delta: the cells changed since
+// the previous message, and those of the delta_repeat - 1 deltas before it, so that a lost
+// message costs nothing. The first scan gives a keyframe (whole window) instead, and at least
+// every keyframe_period_s a keyframe of the same map follows the delta, for receivers that lost
+// more: the delta goes first because a whole window takes tens of ms to build, send and apply,
+// and a newly mapped obstacle must not wait for it.
 #pragma once
 
 #include <Eigen/Core>
@@ -40,7 +43,8 @@ class Mapper {
     std::string reason;
     FilterStats filter;
     InsertStats insert;
-    MapUpdate map;
+    MapUpdate map;                  // the message to send now
+    bool keyframe_follows = false;  // then send keyframe(): the same map_seq as the whole window
     bool window_moved = false;
   };
 
@@ -50,6 +54,10 @@ class Mapper {
 
   // Inserts a scan taken at `utime` (message clock) and makes the next LOCAL_MAP message.
   Result processScan(const ScanInput& scan, int64_t utime);
+
+  // The whole window at the last scan (map_seq and utime of its delta), when processScan said
+  // keyframe_follows; call it after sending that delta and before the next scan.
+  MapUpdate keyframe() const;
 
   // The upkeep a keyframe calls for (writing the window back to the tree, freeing what the window
   // left behind), which changes no message: called after the keyframe is sent, so that receivers
@@ -74,6 +82,7 @@ class Mapper {
   int64_t map_seq_ = 0;
   int64_t last_keyframe_seq_ = 0;
   int64_t last_keyframe_utime_ = 0;
+  int64_t last_scan_utime_ = 0;
   std::deque<std::vector<int64_t>> recent_changes_;  // changed cells of the last deltas
   bool keyframe_requested_ = true;
   bool maintenance_due_ = false;

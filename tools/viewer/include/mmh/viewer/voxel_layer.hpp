@@ -23,7 +23,8 @@ struct VoxelChanges {
 class VoxelLayer {
  public:
   // Applies one LOCAL_MAP message. Returns false (and says why) if the receiver could not apply
-  // it (a gap, a delta before a keyframe, a malformed map): the layer is then unchanged.
+  // it (a gap, a delta before a keyframe, a malformed map): the layer is then unchanged. The
+  // keyframe of a map its delta already built changes nothing (true, no changes).
   bool apply(const local_map_t& msg, VoxelChanges* changes, std::string* reason = nullptr);
 
   double resolution() const { return resolution_; }
