@@ -71,7 +71,9 @@ void BM_MappingFlight(benchmark::State& state) {
       delta_kb.push_back(msg.getEncodedSize() / 1024.0);
     }
     if (keyframe_scan) {
-      const mmh::local_map_t key = result.map.keyframe ? msg : mmh::toLocalMap(mapper->keyframe());
+      mmh::local_map_t following;
+      if (result.keyframe_follows) following = mmh::toLocalMap(mapper->keyframe());
+      const mmh::local_map_t& key = result.keyframe_follows ? following : msg;
       benchmark::DoNotOptimize(key.runs.data());
       keyframe_ms.push_back(
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());

@@ -68,7 +68,6 @@ Mapper::Result Mapper::processScan(const ScanInput& scan, int64_t utime) {
   const bool keyframe = keyframe_requested_ || utime - last_keyframe_utime_ >= period_us ||
                         utime < last_keyframe_utime_;
   ++map_seq_;
-  last_scan_utime_ = utime;
   if (keyframe && map_seq_ == 1) {
     // Nothing sent before: receivers need the whole window first.
     result.map = keyframeOf(map_, map_seq_);
@@ -90,7 +89,7 @@ Mapper::Result Mapper::processScan(const ScanInput& scan, int64_t utime) {
 
 MapUpdate Mapper::keyframe() const {
   MapUpdate u = keyframeOf(map_, map_seq_);
-  u.utime = last_scan_utime_;
+  u.utime = last_keyframe_utime_;  // the scan that called for it
   return u;
 }
 

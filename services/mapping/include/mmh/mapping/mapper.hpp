@@ -82,7 +82,6 @@ class Mapper {
   int64_t map_seq_ = 0;
   int64_t last_keyframe_seq_ = 0;
   int64_t last_keyframe_utime_ = 0;
-  int64_t last_scan_utime_ = 0;
   std::deque<std::vector<int64_t>> recent_changes_;  // changed cells of the last deltas
   bool keyframe_requested_ = true;
   bool maintenance_due_ = false;
