@@ -334,7 +334,12 @@ StopView Arbiter::stopView(int64_t now) const {
   v.has_committed = hasCommitted();
   v.committed_is_stop = committed_.mode == Mode::kStop;
   v.odometry_speed_mps = odometry_ ? odometry_->velocity.norm() : 0.0;
-  v.planned_speed_mps = stateAt(now).velocity.norm();
+  if (v.has_committed) {
+    const double elapsed_s = std::max(0.0, (now - committed_.start_utime) * kUs);
+    const Trajectory& t = committed_.trajectory;
+    v.planned_speed_ahead_mps =
+        elapsed_s < t.duration() ? t.tail(elapsed_s).maxSpeed() : t.velocity(t.duration()).norm();
+  }
   v.stopped_for_stale_map = stopped_for_stale_map_;
   return v;
 }

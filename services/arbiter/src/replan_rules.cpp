@@ -143,13 +143,13 @@ double replanPointAfterKeepS(double start_s, double duration_s, const ArbiterPar
 bool shouldStop(StopCause cause, const StopView& v, const ArbiterParams& params) {
   switch (cause) {
     case StopCause::kStaleMap:
-      // Once per stale period, and only when the vehicle still moves.
+      // Once per stale period, and only when the vehicle moves or its trajectory will move it.
       return v.has_committed && !v.stopped_for_stale_map &&
-             v.odometry_speed_mps > params.stop_min_speed_mps;
+             std::max(v.odometry_speed_mps, v.planned_speed_ahead_mps) > params.stop_min_speed_mps;
     case StopCause::kStaleOdometry:
       // The stop continues the committed trajectory, not the stale odometry.
       return v.has_committed && !v.committed_is_stop &&
-             v.planned_speed_mps > params.stop_min_speed_mps;
+             v.planned_speed_ahead_mps > params.stop_min_speed_mps;
     case StopCause::kNoUsableAnswer:
       // Danger ahead and nothing left to try soon (or no time left): brake rather than fly into
       // it - but only once braking cannot wait any longer, so that the modes keep their chance on
@@ -157,8 +157,10 @@ bool shouldStop(StopCause cause, const StopView& v, const ArbiterParams& params)
       return v.danger_ahead && !v.committed_is_stop &&
              (v.fallback_exhausted || v.by_deadline || v.retry_held_back) && !v.stop_can_wait;
     case StopCause::kUnreachable:
+      // Holding: no trajectory may move the vehicle on, even one that starts from rest - while
+      // the goal is given up, the committed trajectory is no longer checked against new maps.
       return v.has_committed && !v.committed_is_stop &&
-             v.planned_speed_mps > params.stop_min_speed_mps;
+             v.planned_speed_ahead_mps > params.stop_min_speed_mps;
   }
   return false;
 }

@@ -966,6 +966,57 @@ TEST_F(ArbiterRules, WithoutProgressRetriesSlowDownThenTheGoalIsUnreachableUntil
   EXPECT_EQ(a->phase(), Phase::kTracking);
 }
 
+TEST_F(ArbiterRules, AGoalGivenUpHoldsAVehicleWhosePlanHasNotYetMovedIt) {
+  auto a = started(Policy::kMmh, false);
+  // An answer that leaves rest slowly, x = 0.01 t^3 for 3 s: under stop_min_speed_mps for its
+  // first 1.2 s, 0.27 m/s at its end.
+  auto slowStart = [](const PlanRequestOut& r) {
+    ModeAnswer ans = okAnswer(r);
+    mmh::Piece p;
+    p.duration = 3.0;
+    p.coeffs.col(0) = r.start.position;
+    p.coeffs.col(3) = Vector3d(0.01, 0.0, 0.0);
+    ans.trajectory = mmh::Trajectory({p});
+    return ans;
+  };
+  // Every mode fails, the vehicle at rest, until the retry in the last second before the goal
+  // is given up: that answer is committed, and the goal is given up before it has moved the
+  // vehicle.
+  std::optional<CommitOut> last_plan;
+  std::optional<CommitOut> after_give_up;
+  std::optional<double> committed_at_s;
+  bool gave_up = false;
+  const double answer_from_s = params_.give_up_s - params_.stuck_retry_period_s;
+  for (double t = 0.0; t < params_.give_up_s + 2.0 && !after_give_up; t += 0.01) {
+    const int64_t now = at(t);
+    if (std::lround(t * 100) % 10 == 0) a->onMapUpdated(grid_, ++map_seq_, now, now);
+    a->onOdometry(rest(Vector3d(0, 0, 1.2)), now);
+    for (const auto& r : a->takeRequests())
+      a->onAnswer(t >= answer_from_s && !gave_up ? slowStart(r) : failedAnswer(r), now);
+    for (const auto& d : a->takeDecisions()) gave_up |= d.outcome == Outcome::kUnreachable;
+    if (auto c = a->takeCommit()) {
+      if (gave_up) {
+        after_give_up = c;
+      } else {
+        last_plan = c;
+        committed_at_s = t;
+      }
+    }
+  }
+  ASSERT_TRUE(gave_up);
+  ASSERT_TRUE(last_plan.has_value());
+  ASSERT_NE(last_plan->mode, Mode::kStop);
+  ASSERT_TRUE(committed_at_s.has_value());
+  // Holding: the plan that would fly off, unchecked while the goal is given up, is replaced by a
+  // stop where the vehicle is.
+  ASSERT_TRUE(after_give_up.has_value()) << "the plan committed at " << *committed_at_s
+                                         << " s was left to fly after the goal was given up";
+  EXPECT_EQ(after_give_up->mode, Mode::kStop);
+  const mmh::Trajectory& hold = after_give_up->trajectory;
+  EXPECT_LT((hold.position(hold.duration()) - Vector3d(0, 0, 1.2)).norm(), 0.05);
+  EXPECT_LT(hold.maxSpeed(), params_.stop_min_speed_mps);
+}
+
 TEST_F(ArbiterRules, AnUnreachableGoalResumesWhenANewMapOpensAWay) {
   auto a = started(Policy::kMmh, false);
   // Every mode fails until the vehicle, holding at rest, is declared unreachable.

@@ -307,16 +307,25 @@ TEST(ReplanRules, EveryStopHasItsCondition) {
   StopView moving;
   moving.has_committed = true;
   moving.odometry_speed_mps = 2.0;
-  moving.planned_speed_mps = 2.0;
+  moving.planned_speed_ahead_mps = 2.0;
   EXPECT_TRUE(shouldStop(StopCause::kStaleMap, moving, p));
   StopView once = moving;
   once.stopped_for_stale_map = true;
   EXPECT_FALSE(shouldStop(StopCause::kStaleMap, once, p));
   StopView still = moving;
-  still.odometry_speed_mps = still.planned_speed_mps = 0.01;
+  still.odometry_speed_mps = still.planned_speed_ahead_mps = 0.01;
   EXPECT_FALSE(shouldStop(StopCause::kStaleMap, still, p));
   EXPECT_FALSE(shouldStop(StopCause::kStaleOdometry, still, p));
+  EXPECT_FALSE(shouldStop(StopCause::kUnreachable, still, p));
   EXPECT_TRUE(shouldStop(StopCause::kStaleOdometry, moving, p));
+  EXPECT_TRUE(shouldStop(StopCause::kUnreachable, moving, p));
+  // At rest now on a trajectory that will move it (a plan just committed at a hover): a stale
+  // stream or a goal given up must hold it there, or it flies off on a path nobody checks.
+  StopView about_to_leave = still;
+  about_to_leave.planned_speed_ahead_mps = 1.5;
+  EXPECT_TRUE(shouldStop(StopCause::kStaleMap, about_to_leave, p));
+  EXPECT_TRUE(shouldStop(StopCause::kStaleOdometry, about_to_leave, p));
+  EXPECT_TRUE(shouldStop(StopCause::kUnreachable, about_to_leave, p));
 
   StopView failed = moving;
   failed.danger_ahead = true;

@@ -144,7 +144,9 @@ struct StopView {
   bool has_committed = false;
   bool committed_is_stop = false;
   double odometry_speed_mps = 0.0;  // measured
-  double planned_speed_mps = 0.0;   // on the committed trajectory now
+  // The fastest the committed trajectory flies from now to its end: one that starts from rest
+  // (a plan just committed at a hover) still moves the vehicle.
+  double planned_speed_ahead_mps = 0.0;
   bool stopped_for_stale_map = false;
   // The committed trajectory collides with the newest map, or enters unmapped space within the
   // vehicle's reach (Arbiter::unmappedAhead, with stop_decision_margin_s).
