@@ -339,6 +339,12 @@ std::vector<KeySpec> buildKeys() {
       real("arbiter.known_space_lead_s", 0.0, 5.0, "0.1",
            "... that stopping distance counted from the point the answer reaches this long (plus "
            "the replan lead) after its start, at the speed there: the next map checks it again"),
+      real("arbiter.hidden_face_m", 0.0, 2.0, "0.3",
+           "... and beside the centre line, within vehicle.radius_m, no unknown cell this close to "
+           "an occupied cell (a mapped obstacle's unseen side; 0: the centre line only)"),
+      real("arbiter.hidden_face_reach_m", 0.0, 10.0, "0.5",
+           "... within this much path from the vehicle (farther ahead the sensor sees those cells "
+           "on the way)"),
       real("arbiter.slow_plan_replan_s", 0.05, 3600.0, "1.0",
            "A trajectory slower than slow_plan_ratio x its bound is replanned no later than this "
            "after its commit"),

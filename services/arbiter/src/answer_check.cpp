@@ -1,6 +1,7 @@
 #include "mmh/arbiter/answer_check.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "mmh/common/collision_check.hpp"
@@ -43,9 +44,45 @@ double knownSpaceHorizonM(double start_speed_mps, const ArbiterParams& params) {
 }
 
 std::optional<double> firstUnknownWithin(const Trajectory& t, const VoxelGrid& grid,
-                                         double horizon_m, double step_s) {
+                                         double horizon_m, double step_s,
+                                         const BesideThePath& beside) {
   const Eigen::Vector3d start = t.position(0.0);
   const Eigen::Vector3i start_cell = grid.localIndexOf(start);
+  const double res = grid.resolution();
+  const bool check_beside = beside.radius_m > 0.0 && beside.hidden_face_m > 0.0;
+  const int beside_cells = static_cast<int>(std::ceil(beside.radius_m / res));
+  const double radius_sq = beside.radius_m * beside.radius_m;
+  // Squared distance from p to the nearest point of the cell `local`.
+  auto cellDistanceSq = [&](const Eigen::Vector3i& local, const Eigen::Vector3d& p) {
+    const Eigen::Vector3d lo = grid.centerOfLocal(local).array() - 0.5 * res;
+    const Eigen::Vector3d gap = (lo - p).cwiseMax(p - lo - Eigen::Vector3d::Constant(res));
+    return gap.cwiseMax(0.0).squaredNorm();
+  };
+  // An occupied cell within hidden_face_m of `cell`, in its layer or the two next to it.
+  const int face_cells = static_cast<int>(std::ceil(beside.hidden_face_m / res));
+  const double face_sq = beside.hidden_face_m * beside.hidden_face_m;
+  auto nearMappedObstacle = [&](const Eigen::Vector3i& cell) {
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -face_cells; dy <= face_cells; ++dy)
+        for (int dx = -face_cells; dx <= face_cells; ++dx) {
+          if ((dx * dx + dy * dy) * res * res > face_sq + 1e-9) continue;
+          const Eigen::Vector3i other = cell + Eigen::Vector3i(dx, dy, dz);
+          if (grid.inWindow(other) && grid.at(other) == Occupancy::kOccupied) return true;
+        }
+    return false;
+  };
+  auto touchesHiddenFace = [&](const Eigen::Vector3d& p, const Eigen::Vector3i& centre) {
+    for (int dy = -beside_cells; dy <= beside_cells; ++dy)
+      for (int dx = -beside_cells; dx <= beside_cells; ++dx) {
+        const Eigen::Vector3i cell = centre + Eigen::Vector3i(dx, dy, 0);
+        if (!grid.inWindow(cell) || grid.at(cell) != Occupancy::kUnknown) continue;
+        if (cellDistanceSq(cell, p) > radius_sq) continue;
+        // The airframe's own cells at the start: where it is now, seen or not.
+        if (cellDistanceSq(cell, start) <= radius_sq) continue;
+        if (nearMappedObstacle(cell)) return true;
+      }
+    return false;
+  };
   double travelled = 0.0;
   Eigen::Vector3d previous = start;
   for (double s = 0.0; s <= t.duration() && travelled <= horizon_m; s += step_s) {
@@ -54,8 +91,8 @@ std::optional<double> firstUnknownWithin(const Trajectory& t, const VoxelGrid& g
     previous = p;
     const Eigen::Vector3i cell = grid.localIndexOf(p);
     // The vehicle's own cell: where it is now, seen or not.
-    if (cell == start_cell || !grid.inWindow(cell)) continue;
-    if (grid.at(cell) == Occupancy::kUnknown) return s;
+    if (cell != start_cell && grid.inWindow(cell) && grid.at(cell) == Occupancy::kUnknown) return s;
+    if (check_beside && travelled <= beside.reach_m && touchesHiddenFace(p, cell)) return s;
   }
   return std::nullopt;
 }
@@ -66,7 +103,9 @@ std::optional<double> firstUnknownWithinReach(const Trajectory& t, double elapse
   const double lead_end_s = std::min(t.duration(), elapsed_s + lead_s);
   const double horizon_m = t.arcLength(elapsed_s, lead_end_s) +
                            knownSpaceHorizonM(t.velocity(lead_end_s).norm(), params);
-  const auto at = firstUnknownWithin(t.tail(elapsed_s), grid, horizon_m, params.check_step_s);
+  const auto at = firstUnknownWithin(
+      t.tail(elapsed_s), grid, horizon_m, params.check_step_s,
+      {params.vehicle_radius_m, params.hidden_face_m, params.hidden_face_reach_m});
   if (!at) return std::nullopt;
   return elapsed_s + *at;
 }

@@ -90,6 +90,8 @@ ArbiterParams loadArbiterParams(const Config& config) {
   p.halfway_keep_min_left_s = config.getDouble("arbiter.halfway_keep_min_left_s");
   p.known_space_margin_m = config.getDouble("arbiter.known_space_margin_m");
   p.known_space_lead_s = config.getDouble("arbiter.known_space_lead_s");
+  p.hidden_face_m = config.getDouble("arbiter.hidden_face_m");
+  p.hidden_face_reach_m = config.getDouble("arbiter.hidden_face_reach_m");
   p.reference_min_remaining_s = config.getDouble("arbiter.reference_min_remaining_s");
   p.stop_min_speed_mps = config.getDouble("arbiter.stop_min_speed_mps");
   p.stop_decision_margin_s = config.getDouble("arbiter.stop_decision_margin_s");

@@ -90,6 +90,81 @@ TEST(AnswerCheck, UnmappedSpaceWithinTheStopIsFoundAndBeyondItIsNot) {
   EXPECT_FALSE(firstUnknownWithin(from_rest, own, 0.3, 0.01));
 }
 
+// A trunk seen from one side only, as a forward camera that passed it leaves it: occupied cells
+// on its north face (y = 0.4-0.5 m) and unknown cells where its east face would be, 0.1-0.4 m
+// beside a path that creeps along +x at y = 0 (cells at x = 1.0-1.1 m, or centred at x).
+VoxelGrid trunkSeenFromOneSide(double x = 1.05) {
+  VoxelGrid g = mappedFreeGrid();
+  for (int z = 0; z < 30; ++z) {
+    const double cz = (z + 0.5) * 0.1;
+    for (double y : {0.15, 0.25, 0.35}) g.set(g.localIndexOf({x, y, cz}), Occupancy::kUnknown);
+    g.set(g.localIndexOf({x, 0.45, cz}), Occupancy::kOccupied);
+  }
+  return g;
+}
+
+TEST(AnswerCheck, AnUnseenSideOfAMappedObstacleBesideThePathCounts) {
+  const VoxelGrid g = trunkSeenFromOneSide();
+  const Trajectory creep = straight(0.5, 0.0, 4.0);  // 2 m along +x at 0.5 m/s
+  // The centre line lies in seen space: the centre-line rule alone lets it pass.
+  EXPECT_FALSE(firstUnknownWithin(creep, g, 2.0, 0.01));
+  EXPECT_FALSE(firstUnknownWithin(creep, g, 2.0, 0.01, {0.15, 0.0, 2.0}));
+  // A 0.15 m airframe touches the unknown cell at y = 0.1-0.2 m, 0.3 m from the occupied one.
+  const auto at = firstUnknownWithin(creep, g, 2.0, 0.01, {0.15, 0.3, 2.0});
+  ASSERT_TRUE(at);
+  // It reaches the cell's near face (x = 1.0) when the centre is at x = 1.0 - sqrt(0.15^2 -
+  // 0.1^2) = 0.888 m.
+  EXPECT_NEAR(*at, (1.0 - std::sqrt(0.15 * 0.15 - 0.1 * 0.1)) / 0.5, 0.03);
+  // Beyond the horizon it does not count yet, nor beyond the reach beside the path: the sensor
+  // sees those cells on the way.
+  EXPECT_FALSE(firstUnknownWithin(creep, g, 0.8, 0.01, {0.15, 0.3, 2.0}));
+  EXPECT_FALSE(firstUnknownWithin(creep, g, 2.0, 0.01, {0.15, 0.3, 0.8}));
+  EXPECT_TRUE(firstUnknownWithin(creep, g, 2.0, 0.01, {0.15, 0.3, 0.9}));
+}
+
+TEST(AnswerCheck, UnknownCellsBesideThePathAwayFromObstaclesDoNotCount) {
+  // The same unknown cells with nothing mapped near them: the flank of the vehicle's own
+  // body, which a forward camera never sees, must not hold a vehicle whose plan turns.
+  VoxelGrid g = mappedFreeGrid();
+  for (int z = 0; z < 30; ++z)
+    for (double y : {0.15, 0.25, 0.35})
+      g.set(g.localIndexOf({1.05, y, (z + 0.5) * 0.1}), Occupancy::kUnknown);
+  const Trajectory creep = straight(0.5, 0.0, 4.0);
+  EXPECT_FALSE(firstUnknownWithin(creep, g, 2.0, 0.01, {0.15, 0.3, 2.0}));
+  // An obstacle farther than hidden_face_m from them: its unseen side is not there either.
+  VoxelGrid far = trunkSeenFromOneSide();
+  EXPECT_FALSE(firstUnknownWithin(creep, far, 2.0, 0.01, {0.15, 0.15, 2.0}));
+  // Cells the airframe touches where it is now do not count, even next to an obstacle.
+  VoxelGrid own = trunkSeenFromOneSide();
+  Piece p;
+  p.duration = 2.0;
+  p.coeffs.col(0) = Eigen::Vector3d(1.0, 0.0, 1.2);
+  p.coeffs.col(1) = Eigen::Vector3d(-0.5, 0.0, 0.0);  // backing away along -x
+  EXPECT_FALSE(firstUnknownWithin(Trajectory({p}), own, 1.0, 0.01, {0.15, 0.3, 2.0}));
+}
+
+TEST(AnswerCheck, AnAnswerAlongAnUnseenSideOfAnObstacleIsRefused) {
+  // Vehicle radius 0.15 m; unknown cells within 0.3 m of an occupied one and 0.5 m of path count.
+  const ArbiterParams p = paramsAroundTheGrid();
+  const RequestedStart requested =
+      requestAtTheOrigin(Eigen::Vector3d(0.5, 0.0, 0.0), Eigen::Vector3d::Zero());
+  const Trajectory creep = straight(0.5, 0.0, 4.0);
+  std::string why;
+  VoxelGrid seen = mappedFreeGrid();
+  EXPECT_TRUE(checkAnswer(creep, requested.start_utime, requested, &seen, p, 1.5, &why)) << why;
+  // The airframe touches the unseen face 0.29 m from the start.
+  VoxelGrid g = trunkSeenFromOneSide(0.45);
+  EXPECT_FALSE(checkAnswer(creep, requested.start_utime, requested, &g, p, 1.5, &why));
+  EXPECT_NE(why.find("enters unmapped space"), std::string::npos) << why;
+  ArbiterParams centre_line_only = p;
+  centre_line_only.hidden_face_m = 0.0;
+  EXPECT_TRUE(checkAnswer(creep, requested.start_utime, requested, &g, centre_line_only, 1.5, &why))
+      << why;
+  // 1 m on, the sensor sees the face on the way.
+  VoxelGrid farther = trunkSeenFromOneSide(1.45);
+  EXPECT_TRUE(checkAnswer(creep, requested.start_utime, requested, &farther, p, 1.5, &why)) << why;
+}
+
 TEST(AnswerCheck, AnAnswerWhoseStopWouldEndInUnmappedSpaceIsRefused) {
   ArbiterParams p = paramsAroundTheGrid();
   const RequestedStart requested =

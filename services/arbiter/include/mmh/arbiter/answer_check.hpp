@@ -5,7 +5,9 @@
 // space the sensor has seen: the path until the next map can check it again, then the stretch in
 // which the vehicle could stop from the speed there (plus a margin). Planners treat unknown space
 // as free, which is safe far ahead but not where the vehicle will be before it could brake
-// (sideways, backwards or down, where a forward camera never looked).
+// (sideways, backwards or down, where a forward camera never looked). Beside the centre line,
+// within the airframe's radius, unknown cells next to a mapped obstacle count too: they may be the
+// obstacle's side the sensor has not seen.
 #pragma once
 
 #include <optional>
@@ -29,15 +31,33 @@ struct RequestedStart {
 // distance from start_speed_mps at max_acc_mps2 plus known_space_margin_m.
 double knownSpaceHorizonM(double start_speed_mps, const ArbiterParams& params);
 
+// Unknown cells beside the centre line that count: those the airframe (radius_m, in the path's
+// voxel layer) would touch and that lie within hidden_face_m of an occupied cell - the side of a
+// mapped obstacle the sensor has not seen. Other unknown cells beside the path do not: a forward
+// camera never sees beside its own body, and a vehicle whose plan turns could never leave.
+// Only within reach_m of path from the start: farther ahead the sensor sees those cells on the
+// way, as it sees the occlusion shadow beside an obstacle the path swerves round. hidden_face_m
+// 0: the centre line only.
+struct BesideThePath {
+  double radius_m = 0.0;
+  double hidden_face_m = 0.0;
+  double reach_m = 0.0;
+};
+
 // Time of the first sample (every step_s) within horizon_m of path length from the start whose
-// cell is unknown in `grid` (the start's own cell and cells outside the window excepted).
+// cell is unknown in `grid`, or beside which the airframe touches an unknown cell that counts
+// (BesideThePath). Cells the airframe touches at the start (the start's own cell on the centre
+// line) and cells outside the window do not count: the vehicle is there, seen or not.
 std::optional<double> firstUnknownWithin(const Trajectory& t, const VoxelGrid& grid,
-                                         double horizon_m, double step_s);
+                                         double horizon_m, double step_s,
+                                         const BesideThePath& beside = {});
 
 // The same rule for the committed trajectory `t` while it is flown (`elapsed_s` of it flown):
 // if no plan replaced it, the vehicle would follow it for lead_s more and then brake along it.
 // Returns the time (on t) of the first unknown cell within that reach - the path of lead_s plus
-// knownSpaceHorizonM of the speed there - or nothing when the reach lies in mapped space.
+// knownSpaceHorizonM of the speed there - on the centre line or beside it (BesideThePath from
+// vehicle_radius_m, hidden_face_m and hidden_face_reach_m), or nothing when the reach lies in
+// mapped space.
 std::optional<double> firstUnknownWithinReach(const Trajectory& t, double elapsed_s, double lead_s,
                                               const VoxelGrid& grid, const ArbiterParams& params);
 

@@ -71,6 +71,10 @@ struct ArbiterParams {
   // from the point it reaches known_space_lead_s (plus the replan lead) after its start.
   double known_space_margin_m = 0.3;
   double known_space_lead_s = 0.1;
+  // Beside the centre line, within vehicle_radius_m, unknown cells this close to an occupied cell
+  // count as unmapped space too: a mapped obstacle's unseen side (0: the centre line only).
+  double hidden_face_m = 0.3;
+  double hidden_face_reach_m = 0.5;  // ... within this much path (farther, the sensor sees them)
   ParallelModes parallel_modes = ParallelModes::kNone;
   double inflation_m = 0.3;              // the planners' map inflation (local target clearance)
   double vehicle_radius_m = 0.15;        // airframe: a stop that brings it into an occupied cell
