@@ -389,45 +389,54 @@ struct CandidateStop {
   bool inside = true;  // within the geofence (or no fence)
   bool clear = false;  // inside, clear of the known obstacles through known space, and passes
                        // the arbiter's collision check
+  bool meets_condition = true;  // the caller's further condition (also_clear)
 };
 
 CandidateStop examineStop(const VoxelGrid& grid, Trajectory stop, double clearance_m,
-                          const Geofence* fence) {
+                          const Geofence* fence, const StopCondition& also_clear) {
   CandidateStop c;
   c.trajectory = std::move(stop);
   c.inside = !fence || staysInside(*fence, c.trajectory);
   c.seen = assessStop(grid, c.trajectory, clearance_m + kClearanceSeenBeyond_m);
   c.clear = c.inside && isClear(c.seen, clearance_m) &&
             !firstCollisionTime(grid, c.trajectory, 0.0, c.trajectory.duration());
+  if (c.clear && also_clear) c.meets_condition = also_clear(c.trajectory);
+  c.clear = c.clear && c.meets_condition;
   return c;
 }
 
 }  // namespace
 
 bool isClearStop(const VoxelGrid& grid, const Trajectory& stop, double clearance_m,
-                 const Geofence* fence) {
+                 const Geofence* fence, const StopCondition& also_clear) {
   // The cheap checks first: most candidate swerves fail them.
   if ((fence && !staysInside(*fence, stop)) || firstCollisionTime(grid, stop, 0.0, stop.duration()))
     return false;
-  return examineStop(grid, stop, clearance_m, nullptr).clear;
+  return examineStop(grid, stop, clearance_m, nullptr, also_clear).clear;
 }
 
 Trajectory chooseStoppingTrajectory(const VoxelGrid* grid, const Trajectory& path, double t0,
                                     double max_acc_mps2, double max_vel_mps, double clearance_m,
-                                    double touch_m, bool may_swerve, const Geofence* fence) {
+                                    double touch_m, bool may_swerve, const Geofence* fence,
+                                    const StopCondition& also_clear) {
   Trajectory along_stop = makeStoppingTrajectory(path, t0, max_acc_mps2, max_vel_mps);
   if (!grid || !grid->valid()) return along_stop;
   Trajectory straight_stop = makeStoppingTrajectory(path.state(t0), max_acc_mps2, max_vel_mps);
   const bool along_much_longer =
       along_stop.arcLength() > kMuchLongerStop * straight_stop.arcLength();
-  const CandidateStop along = examineStop(*grid, std::move(along_stop), clearance_m, fence);
+  const CandidateStop along =
+      examineStop(*grid, std::move(along_stop), clearance_m, fence, also_clear);
   if (along.clear && !along_much_longer) return along.trajectory;
-  const CandidateStop straight = examineStop(*grid, std::move(straight_stop), clearance_m, fence);
+  const CandidateStop straight =
+      examineStop(*grid, std::move(straight_stop), clearance_m, fence, also_clear);
   if (along.clear) return straight.clear ? straight.trajectory : along.trajectory;
+  // Braking along is refused by the caller's condition alone: the clear straight stop.
+  if (straight.clear && !along.meets_condition) return straight.trajectory;
   if (may_swerve && !straight.clear) {
     if (auto swerve = firstSwervingStop(
-            path.state(t0), max_acc_mps2, max_vel_mps,
-            [&](const Trajectory& stop) { return isClearStop(*grid, stop, clearance_m, fence); }))
+            path.state(t0), max_acc_mps2, max_vel_mps, [&](const Trajectory& stop) {
+              return isClearStop(*grid, stop, clearance_m, fence, also_clear);
+            }))
       return *swerve;
   }
   if (along.inside != straight.inside) {

@@ -43,9 +43,11 @@ double knownSpaceHorizonM(double start_speed_mps, const ArbiterParams& params) {
   return stoppingDistance(start_speed_mps, params.max_acc_mps2) + params.known_space_margin_m;
 }
 
-std::optional<double> firstUnknownWithin(const Trajectory& t, const VoxelGrid& grid,
-                                         double horizon_m, double step_s,
-                                         const BesideThePath& beside) {
+namespace {
+
+// firstUnknownWithin, with or without the centre line.
+std::optional<double> firstUnmapped(const Trajectory& t, const VoxelGrid& grid, double horizon_m,
+                                    double step_s, const BesideThePath& beside, bool centre_line) {
   const Eigen::Vector3d start = t.position(0.0);
   const Eigen::Vector3i start_cell = grid.localIndexOf(start);
   const double res = grid.resolution();
@@ -71,7 +73,20 @@ std::optional<double> firstUnknownWithin(const Trajectory& t, const VoxelGrid& g
         }
     return false;
   };
-  auto touchesHiddenFace = [&](const Eigen::Vector3d& p, const Eigen::Vector3i& centre) {
+  // Whether a mapped obstacle stands between the start and `cell`: then the cell is in its
+  // shadow, which the sensor sees on the way, not a side it never looked at.
+  auto inShadow = [&](const Eigen::Vector3i& cell) {
+    const Eigen::Vector3d to = grid.centerOfLocal(cell);
+    const double length = (to - start).norm();
+    const int steps = static_cast<int>(std::ceil(length / (0.5 * res)));
+    for (int i = 1; i < steps; ++i) {
+      const Eigen::Vector3i on = grid.localIndexOf(start + (to - start) * (double(i) / steps));
+      if (on == cell) break;
+      if (grid.inWindow(on) && grid.at(on) == Occupancy::kOccupied) return true;
+    }
+    return false;
+  };
+  auto touchesHiddenFace = [&](const Eigen::Vector3d& p, const Eigen::Vector3i& centre, bool near) {
     for (int dy = -beside_cells; dy <= beside_cells; ++dy)
       for (int dx = -beside_cells; dx <= beside_cells; ++dx) {
         const Eigen::Vector3i cell = centre + Eigen::Vector3i(dx, dy, 0);
@@ -79,7 +94,7 @@ std::optional<double> firstUnknownWithin(const Trajectory& t, const VoxelGrid& g
         if (cellDistanceSq(cell, p) > radius_sq) continue;
         // The airframe's own cells at the start: where it is now, seen or not.
         if (cellDistanceSq(cell, start) <= radius_sq) continue;
-        if (nearMappedObstacle(cell)) return true;
+        if (nearMappedObstacle(cell) && (near || !inShadow(cell))) return true;
       }
     return false;
   };
@@ -91,10 +106,27 @@ std::optional<double> firstUnknownWithin(const Trajectory& t, const VoxelGrid& g
     previous = p;
     const Eigen::Vector3i cell = grid.localIndexOf(p);
     // The vehicle's own cell: where it is now, seen or not.
-    if (cell != start_cell && grid.inWindow(cell) && grid.at(cell) == Occupancy::kUnknown) return s;
-    if (check_beside && travelled <= beside.reach_m && touchesHiddenFace(p, cell)) return s;
+    if (centre_line && cell != start_cell && grid.inWindow(cell) &&
+        grid.at(cell) == Occupancy::kUnknown)
+      return s;
+    if (check_beside && touchesHiddenFace(p, cell, travelled <= beside.reach_m)) return s;
   }
   return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<double> firstUnknownWithin(const Trajectory& t, const VoxelGrid& grid,
+                                         double horizon_m, double step_s,
+                                         const BesideThePath& beside) {
+  return firstUnmapped(t, grid, horizon_m, step_s, beside, true);
+}
+
+bool touchesHiddenFace(const Trajectory& stop, const VoxelGrid& grid, const ArbiterParams& params) {
+  const double length_m = stop.arcLength();
+  return firstUnmapped(stop, grid, length_m, params.check_step_s,
+                       {params.vehicle_radius_m, params.hidden_face_m, length_m}, false)
+      .has_value();
 }
 
 std::optional<double> firstUnknownWithinReach(const Trajectory& t, double elapsed_s, double lead_s,

@@ -239,11 +239,16 @@ double Arbiter::stopTouchDistance() const {
   return params_.vehicle_radius_m + (grid_ ? 0.5 * grid_->resolution() : 0.0);
 }
 
+StopCondition Arbiter::noHiddenFaceBeside() const {
+  if (!grid_ || params_.hidden_face_m <= 0.0) return {};
+  return [this](const Trajectory& stop) { return !touchesHiddenFace(stop, *grid_, params_); };
+}
+
 Trajectory Arbiter::stopAlongCommitted(double t0_s, bool may_swerve) const {
   const Geofence fence = geofence();
   return chooseStoppingTrajectory(grid_, flownTrajectory(), t0_s, params_.max_acc_mps2,
                                   params_.max_vel_mps, params_.check_inflation_m,
-                                  stopTouchDistance(), may_swerve, &fence);
+                                  stopTouchDistance(), may_swerve, &fence, noHiddenFaceBeside());
 }
 
 bool Arbiter::stopCanWait(int64_t now) const {
@@ -797,7 +802,7 @@ void Arbiter::swerveIfStopMeetsObstacle(int64_t now, const std::string& notes, T
   // stop clear of it is worth committing; else the modes go on trying.
   const Trajectory stop = stopAlongCommitted(t0);
   const Geofence fence = geofence();
-  if (!isClearStop(*grid_, stop, params_.check_inflation_m, &fence)) return;
+  if (!isClearStop(*grid_, stop, params_.check_inflation_m, &fence, noHiddenFaceBeside())) return;
   ++counters_.swerving_stops;
   commitStop(now, "the stop under way meets a newly mapped obstacle: swerving round it; " + notes,
              trigger, &stop);
@@ -814,8 +819,9 @@ Trajectory Arbiter::backupAlong(const Trajectory& path, double tb) const {
 std::optional<double> Arbiter::latestBackupStopS(const Trajectory& path, double horizon_s,
                                                  double margin_s) const {
   const Geofence fence = geofence();
+  const StopCondition no_hidden_face = noHiddenFaceBeside();
   auto clear = [&](const Trajectory& t) {
-    return isClearStop(*grid_, t, params_.check_inflation_m, &fence);
+    return isClearStop(*grid_, t, params_.check_inflation_m, &fence, no_hidden_face);
   };
   auto stopFrom = [&](double tb) {
     return makeStoppingTrajectory(path, tb, params_.max_acc_mps2, params_.max_vel_mps);

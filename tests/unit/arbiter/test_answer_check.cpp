@@ -115,11 +115,40 @@ TEST(AnswerCheck, AnUnseenSideOfAMappedObstacleBesideThePathCounts) {
   // It reaches the cell's near face (x = 1.0) when the centre is at x = 1.0 - sqrt(0.15^2 -
   // 0.1^2) = 0.888 m.
   EXPECT_NEAR(*at, (1.0 - std::sqrt(0.15 * 0.15 - 0.1 * 0.1)) / 0.5, 0.03);
-  // Beyond the horizon it does not count yet, nor beyond the reach beside the path: the sensor
-  // sees those cells on the way.
+  // Beyond the horizon it does not count yet.
   EXPECT_FALSE(firstUnknownWithin(creep, g, 0.8, 0.01, {0.15, 0.3, 2.0}));
-  EXPECT_FALSE(firstUnknownWithin(creep, g, 2.0, 0.01, {0.15, 0.3, 0.8}));
-  EXPECT_TRUE(firstUnknownWithin(creep, g, 2.0, 0.01, {0.15, 0.3, 0.9}));
+  // In plain sight of the start, it counts beyond the reach beside the path too: a side the
+  // sensor could have seen from here but never looked at.
+  EXPECT_TRUE(firstUnknownWithin(creep, g, 2.0, 0.01, {0.15, 0.3, 0.1}));
+}
+
+TEST(AnswerCheck, AnObstaclesShadowBesideThePathCountsOnlyNearTheStart) {
+  // 1 m along +x, then 1 m along +y (1 m/s each). Beside the second leg, at x = 1.1-1.2 m,
+  // y = 0.5-0.6 m, an unknown cell 0.2 m from a mapped obstacle's face (x = 1.3-1.4 m).
+  mmh::Piece along_x, along_y;
+  along_x.duration = along_y.duration = 1.0;
+  along_x.coeffs.col(0) = Eigen::Vector3d(0.0, 0.0, 1.25);
+  along_x.coeffs.col(1) = Eigen::Vector3d(1.0, 0.0, 0.0);
+  along_y.coeffs.col(0) = Eigen::Vector3d(1.0, 0.0, 1.25);
+  along_y.coeffs.col(1) = Eigen::Vector3d(0.0, 1.0, 0.0);
+  const Trajectory corner({along_x, along_y});
+  VoxelGrid g = mappedFreeGrid();
+  for (int z = 0; z < 30; ++z) {
+    const double cz = (z + 0.5) * 0.1;
+    g.set(g.localIndexOf({1.15, 0.55, cz}), Occupancy::kUnknown);
+    g.set(g.localIndexOf({1.35, 0.55, cz}), Occupancy::kOccupied);
+  }
+  // In plain sight of the start: counted, about 1.45 m along the path.
+  const auto at = firstUnknownWithin(corner, g, 3.0, 0.01, {0.15, 0.3, 0.5});
+  ASSERT_TRUE(at);
+  EXPECT_NEAR(*at, 1.0 + 0.5 - std::sqrt(0.15 * 0.15 - 0.1 * 0.1), 0.03);
+  // A mapped obstacle between the start and that cell (at x = 0.5-0.6 m, y = 0.2-0.3 m, clear
+  // of the path): the cell lies in its shadow, which the sensor sees on the way. It counts
+  // only within the reach.
+  for (int z = 0; z < 30; ++z)
+    g.set(g.localIndexOf({0.55, 0.25, (z + 0.5) * 0.1}), Occupancy::kOccupied);
+  EXPECT_FALSE(firstUnknownWithin(corner, g, 3.0, 0.01, {0.15, 0.3, 0.5}));
+  EXPECT_TRUE(firstUnknownWithin(corner, g, 3.0, 0.01, {0.15, 0.3, 1.5}));
 }
 
 TEST(AnswerCheck, UnknownCellsBesideThePathAwayFromObstaclesDoNotCount) {
@@ -160,9 +189,25 @@ TEST(AnswerCheck, AnAnswerAlongAnUnseenSideOfAnObstacleIsRefused) {
   centre_line_only.hidden_face_m = 0.0;
   EXPECT_TRUE(checkAnswer(creep, requested.start_utime, requested, &g, centre_line_only, 1.5, &why))
       << why;
-  // 1 m on, the sensor sees the face on the way.
+  // 1 m on, beyond the answer's reach (1.5 s of path, its stop and the margin).
   VoxelGrid farther = trunkSeenFromOneSide(1.45);
   EXPECT_TRUE(checkAnswer(creep, requested.start_utime, requested, &farther, p, 1.5, &why)) << why;
+}
+
+TEST(AnswerCheck, AStopBesideAnUnseenSideOfAnObstacleTouchesIt) {
+  ArbiterParams p = paramsAroundTheGrid();  // radius 0.15 m, hidden face 0.3 m
+  const VoxelGrid g = trunkSeenFromOneSide();
+  // Braking from 1 m/s along +x at y = 0: 0.25 m, short of the face at x = 1.0 m.
+  EXPECT_FALSE(touchesHiddenFace(straight(1.0, -2.0, 0.5), g, p));
+  // The same stop from x = 0.7 m would brake beside the face, far from the start or not.
+  Piece from_there;
+  from_there.duration = 0.5;
+  from_there.coeffs.col(0) = Eigen::Vector3d(0.7, 0.0, 1.2);
+  from_there.coeffs.col(1) = Eigen::Vector3d(1.0, 0.0, 0.0);
+  from_there.coeffs.col(2) = Eigen::Vector3d(-1.0, 0.0, 0.0);
+  EXPECT_TRUE(touchesHiddenFace(Trajectory({from_there}), g, p));
+  p.hidden_face_m = 0.0;
+  EXPECT_FALSE(touchesHiddenFace(Trajectory({from_there}), g, p));
 }
 
 TEST(AnswerCheck, AnAnswerWhoseStopWouldEndInUnmappedSpaceIsRefused) {

@@ -378,6 +378,28 @@ TEST(StoppingTrajectory, AStopThroughTheGeofenceIsNotClear) {
   EXPECT_FALSE(mmh::isClearStop(clear, stop, 0.25, &fence));
 }
 
+// The caller's further condition (the arbiter's: no mapped obstacle's unseen side beside the
+// stop) makes a stop unclear like an obstacle would: braking along the bend is refused, and the
+// straight stop, which meets it, is taken.
+TEST(StoppingTrajectory, ACallersFurtherConditionDecidesWhichStopIsClear) {
+  const mmh::Trajectory path = bendingPath();
+  const mmh::VoxelGrid clear = gridWithPillar(1.15, 0.6, 0.0);
+  const mmh::Trajectory along = mmh::makeStoppingTrajectory(path, 0.0, 2.0, 3.0);
+  const mmh::Trajectory straight = mmh::makeStoppingTrajectory(path.state(0.0), 2.0, 3.0);
+  const Eigen::Vector3d along_end = along.position(along.duration());
+  ASSERT_GT((straight.position(straight.duration()) - along_end).norm(), 0.05);
+  auto endsElsewhere = [&](const mmh::Trajectory& t) {
+    return (t.position(t.duration()) - along_end).norm() > 0.05;
+  };
+  EXPECT_TRUE(mmh::isClearStop(clear, along, 0.25));
+  EXPECT_FALSE(mmh::isClearStop(clear, along, 0.25, nullptr, endsElsewhere));
+  const mmh::Trajectory chosen = mmh::chooseStoppingTrajectory(
+      &clear, path, 0.0, 2.0, 3.0, 0.25, kTouch, true, nullptr, endsElsewhere);
+  EXPECT_TRUE(endsElsewhere(chosen));
+  EXPECT_LT((chosen.velocity(0) - path.velocity(0)).norm(), 1e-9);
+  EXPECT_LT(chosen.velocity(chosen.duration()).norm(), 1e-6);
+}
+
 namespace {
 
 // A cruise along x: from rest at the origin to rest 20 m on, at up to about 3 m/s (4 pieces).

@@ -68,12 +68,16 @@ std::optional<Trajectory> firstSwervingStop(const KinematicState& start, double 
                                             double max_vel_mps,
                                             const std::function<bool(const Trajectory&)>& accept);
 
+// A caller's further condition on a clear stop (the arbiter's: no mapped obstacle's unseen side
+// beside it); empty: none.
+using StopCondition = std::function<bool(const Trajectory&)>;
+
 // Whether a stop keeps clearance_m from the occupied cells' centres of `grid`, runs through known
 // space only (a few centimetres of unknown excepted), passes firstCollisionTime on the grid's
-// inflated cells (the arbiter's check of the committed trajectory) and, given a fence, stays
-// inside it.
+// inflated cells (the arbiter's check of the committed trajectory), meets also_clear and, given a
+// fence, stays inside it.
 bool isClearStop(const VoxelGrid& grid, const Trajectory& stop, double clearance_m,
-                 const Geofence* fence = nullptr);
+                 const Geofence* fence = nullptr, const StopCondition& also_clear = {});
 
 // The stop to commit when `path` is to be left at t0 (danger ahead on it): braking along it, so
 // that an avoidance under way is kept, if that stays clear (isClearStop); but the straight stop
@@ -83,12 +87,13 @@ bool isClearStop(const VoxelGrid& grid, const Trajectory& stop, double clearance
 // Braking along a path that bends into the obstacle it is stopped for can reach it; the straight
 // stop can run into unknown space that the path never crossed; a newly mapped obstacle may stand on
 // both. Given a fence, a stop that leaves it is not clear, and of two braking stops that are not,
-// the one that stays inside it is taken unless it touches an obstacle. Without a grid, braking
-// along the path.
+// the one that stays inside it is taken unless it touches an obstacle. A clear stop also meets
+// also_clear. Without a grid, braking along the path.
 Trajectory chooseStoppingTrajectory(const VoxelGrid* grid, const Trajectory& path, double t0,
                                     double max_acc_mps2, double max_vel_mps, double clearance_m,
                                     double touch_m, bool may_swerve = true,
-                                    const Geofence* fence = nullptr);
+                                    const Geofence* fence = nullptr,
+                                    const StopCondition& also_clear = {});
 
 // Least distance of the trajectory to the occupied cells' centres (sampled 1 cm apart at most),
 // at most limit_m.

@@ -35,9 +35,10 @@ double knownSpaceHorizonM(double start_speed_mps, const ArbiterParams& params);
 // voxel layer) would touch and that lie within hidden_face_m of an occupied cell - the side of a
 // mapped obstacle the sensor has not seen. Other unknown cells beside the path do not: a forward
 // camera never sees beside its own body, and a vehicle whose plan turns could never leave.
-// Only within reach_m of path from the start: farther ahead the sensor sees those cells on the
-// way, as it sees the occlusion shadow beside an obstacle the path swerves round. hidden_face_m
-// 0: the centre line only.
+// Farther than reach_m of path from the start, only cells in plain sight of the start (no
+// occupied cell between): a side the sensor could see from there but never looked at, which a
+// forward camera will not see on the way either. A cell in an obstacle's shadow it sees on the
+// way, as it passes the obstacle the path swerves round. hidden_face_m 0: the centre line only.
 struct BesideThePath {
   double radius_m = 0.0;
   double hidden_face_m = 0.0;
@@ -51,6 +52,12 @@ struct BesideThePath {
 std::optional<double> firstUnknownWithin(const Trajectory& t, const VoxelGrid& grid,
                                          double horizon_m, double step_s,
                                          const BesideThePath& beside = {});
+
+// Whether the airframe on `stop`, anywhere along it, touches an unknown cell beside its centre
+// line that counts (BesideThePath from vehicle_radius_m and hidden_face_m, the whole stop within
+// reach): a stop that brakes along a path bending towards a mapped obstacle's unseen side is no
+// clear stop, though its centre line stays in mapped space.
+bool touchesHiddenFace(const Trajectory& stop, const VoxelGrid& grid, const ArbiterParams& params);
 
 // The same rule for the committed trajectory `t` while it is flown (`elapsed_s` of it flown):
 // if no plan replaced it, the vehicle would follow it for lead_s more and then brake along it.

@@ -21,6 +21,7 @@
 #include "mmh/arbiter/progress_monitor.hpp"
 #include "mmh/arbiter/replan_rules.hpp"
 #include "mmh/common/geofence.hpp"
+#include "mmh/common/stopping_trajectory.hpp"
 #include "mmh/common/trajectory.hpp"
 #include "mmh/common/voxel_grid.hpp"
 
@@ -265,6 +266,9 @@ class Arbiter {
   // The stop (chooseStoppingTrajectory) that leaves the committed trajectory t0_s into it; one
   // that swerves only if may_swerve.
   Trajectory stopAlongCommitted(double t0_s, bool may_swerve = true) const;
+  // The arbiter's further condition on a clear stop (isClearStop): the airframe meets no mapped
+  // obstacle's unseen side beside it (touchesHiddenFace); empty with hidden_face_m 0.
+  StopCondition noHiddenFaceBeside() const;
   // Sets the phase after a round's decision or a stop, unless a new goal came meanwhile (its
   // round comes next whatever the old round decided).
   void enterPhase(Phase phase);
