@@ -86,7 +86,7 @@ std::optional<double> firstUnmapped(const Trajectory& t, const VoxelGrid& grid, 
     }
     return false;
   };
-  auto touchesHiddenFace = [&](const Eigen::Vector3d& p, const Eigen::Vector3i& centre, bool near) {
+  auto besideHiddenFace = [&](const Eigen::Vector3d& p, const Eigen::Vector3i& centre, bool near) {
     for (int dy = -beside_cells; dy <= beside_cells; ++dy)
       for (int dx = -beside_cells; dx <= beside_cells; ++dx) {
         const Eigen::Vector3i cell = centre + Eigen::Vector3i(dx, dy, 0);
@@ -109,7 +109,7 @@ std::optional<double> firstUnmapped(const Trajectory& t, const VoxelGrid& grid, 
     if (centre_line && cell != start_cell && grid.inWindow(cell) &&
         grid.at(cell) == Occupancy::kUnknown)
       return s;
-    if (check_beside && touchesHiddenFace(p, cell, travelled <= beside.reach_m)) return s;
+    if (check_beside && besideHiddenFace(p, cell, travelled <= beside.reach_m)) return s;
   }
   return std::nullopt;
 }

@@ -334,12 +334,13 @@ ReplanView Arbiter::replanView(int64_t now) const {
   return v;
 }
 
-StopView Arbiter::stopView(int64_t now) const {
+StopView Arbiter::stopView(int64_t now, StopCause cause) const {
   StopView v;
   v.has_committed = hasCommitted();
   v.committed_is_stop = committed_.mode == Mode::kStop;
   v.odometry_speed_mps = odometry_ ? odometry_->velocity.norm() : 0.0;
-  if (v.has_committed) {
+  // The rule for a failed round does not read it, and runs on every input while recovering.
+  if (v.has_committed && cause != StopCause::kNoUsableAnswer) {
     const double elapsed_s = std::max(0.0, (now - committed_.start_utime) * kUs);
     const Trajectory& t = committed_.trajectory;
     v.planned_speed_ahead_mps =
@@ -374,7 +375,7 @@ void Arbiter::evaluate(int64_t now) {
   }
   // A planner needs a map; awareness-driven policies also wait for an awareness of this goal.
   if (mapStale(now)) {
-    if (shouldStop(StopCause::kStaleMap, stopView(now), params_)) {
+    if (shouldStop(StopCause::kStaleMap, stopView(now, StopCause::kStaleMap), params_)) {
       stopped_for_stale_map_ = true;
       commitStop(now, "LOCAL_MAP is stale: stopping until maps return", Trigger::kNone);
     }
@@ -454,7 +455,7 @@ void Arbiter::giveUp(int64_t now) {
       std::to_string(static_cast<int>(params_.unreachable_retry_s)) +
       " s (a new goal resumes at once)" +
       (last_failure_notes_.empty() ? "" : "; last failure: " + last_failure_notes_);
-  if (shouldStop(StopCause::kUnreachable, stopView(now), params_)) {
+  if (shouldStop(StopCause::kUnreachable, stopView(now, StopCause::kUnreachable), params_)) {
     commitStop(now, why, Trigger::kNone);
   }
   DecisionOut d;
@@ -772,7 +773,7 @@ bool Arbiter::retraceOutOfTheSpot(const Round& round, DecisionOut& d) {
 
 bool Arbiter::stopIfNoTimeLeft(int64_t now, bool by_deadline, const std::string& notes,
                                Trigger trigger) {
-  StopView stop = stopView(now);
+  StopView stop = stopView(now, StopCause::kNoUsableAnswer);
   const bool obstacle = collisionAhead(now);
   stop.danger_ahead = obstacle || unmappedAhead(now, params_.stop_decision_margin_s).has_value();
   stop.fallback_exhausted = chain_.exhausted();
@@ -943,7 +944,7 @@ void Arbiter::onStaleOdometry(int64_t now) {
   ++counters_.stale_odometry;
   const std::string why = "ODOMETRY is stale (" + std::to_string((now - odometry_utime_) / 1000) +
                           " ms old): no planning until it returns";
-  if (shouldStop(StopCause::kStaleOdometry, stopView(now), params_)) {
+  if (shouldStop(StopCause::kStaleOdometry, stopView(now, StopCause::kStaleOdometry), params_)) {
     commitStop(now, why + "; stopping", Trigger::kNone);
     return;
   }

@@ -201,7 +201,8 @@ class Arbiter {
 
   // The policy's inputs now (replan_rules.hpp).
   ReplanView replanView(int64_t now) const;
-  StopView stopView(int64_t now) const;
+  // What the stop rule for `cause` reads (shouldStop).
+  StopView stopView(int64_t now, StopCause cause) const;
 
   void evaluate(int64_t now);
   // The latency budget lowered the speed limit below the committed trajectory's speed: commit
