@@ -785,6 +785,52 @@ TEST_F(ArbiterRules, OnlyAnObstacleMappedOnTheBackupStopIsANewDanger) {
   EXPECT_EQ(answered_seen, at(t2));
 }
 
+// A backup stop brakes along the committed path. Where that path passes a mapped obstacle whose
+// side toward it the sensor has not seen, the stop must end before that side, though the centre
+// line stays in mapped space: the side may reach into the airframe's way.
+TEST_F(ArbiterRules, ABackupStopEndsBeforeAnObstaclesUnseenSideBesideThePath) {
+  params_.stale_map_s = 10.0;
+  params_.defer_far_collisions = false;
+  params_.failed_round_speed_ratio = 1.0;
+  for (const double hidden_face_m : {0.3, 0.0}) {
+    SCOPED_TRACE("hidden_face_m " + std::to_string(hidden_face_m));
+    params_.hidden_face_m = hidden_face_m;
+    clearGrid();
+    auto a = started(Policy::kMmh);
+    KinematicState before;
+    const double t1 = flyToCruise(*a, &before);
+    // 4 m ahead, a trunk 0.45-0.75 m beside the path (at y = 0), seen from above only: the cells
+    // between it and the path (y 0.1-0.4 m) unknown. Its unseen side lies beyond the committed
+    // path's reach, so only the pillar 7 m ahead is a danger.
+    const double face_x = before.position.x() + 4.0;
+    for (int64_t i = 0; i < grid_.numCells(); ++i) {
+      const Vector3d c = grid_.centerOfLocal(grid_.localFromLinear(i));
+      if (c.x() < face_x || c.x() > face_x + 0.6) continue;
+      if (c.y() > 0.1 && c.y() < 0.4) grid_.setLinear(i, mmh::Occupancy::kUnknown);
+      if (c.y() > 0.4 && c.y() < 0.8) grid_.setLinear(i, mmh::Occupancy::kOccupied);
+    }
+    putPillar(before.position.x() + 7.0, 0.0, 0.4);
+    a->onMapUpdated(grid_, ++map_seq_, at(t1), at(t1));
+    auto eam = a->takeRequests();
+    ASSERT_EQ(eam.size(), 1u);
+    a->onAnswer(failedAnswer(eam[0]), at(t1 + 0.005));
+    auto commit = a->takeCommit();
+    ASSERT_TRUE(commit.has_value());
+    ASSERT_EQ(a->counters().backup_stops, 1);
+    const Trajectory& backup = commit->trajectory;
+    EXPECT_FALSE(mmh::firstCollisionTime(grid_, backup, 0.0, backup.duration()).has_value());
+    const double rest_x = backup.position(backup.duration()).x();
+    if (hidden_face_m > 0.0) {
+      // Checked here by the airframe's reach, not by the arbiter's rule: braking straight along
+      // y = 0, at rest before the airframe reaches the unknown cells.
+      EXPECT_LT(rest_x + params_.vehicle_radius_m, face_x);
+    } else {
+      // The centre line alone: braking goes on past the trunk, up to the pillar.
+      EXPECT_GT(rest_x, face_x + 0.6);
+    }
+  }
+}
+
 TEST_F(ArbiterRules, WhileStuckAFailedRoundWithTheDangerCloseStopsAtOnce) {
   // Stuck from the start: retries come at most every stuck_retry_period_s, too late for a danger
   // this close.
