@@ -59,6 +59,22 @@ std::vector<const FlightResult*> flightsOf(const std::vector<FlightResult>& resu
   return out;
 }
 
+using ModeSlots = std::array<double, kModeSlots>;
+
+// The mean per successful flight of one per-mode field of TimeByMode; 0 successful flights: zeros.
+ModeSlots meanOfSuccessful(const std::vector<const FlightResult*>& flights,
+                           ModeSlots TimeByMode::*field, int* successful) {
+  ModeSlots mean{};
+  *successful = 0;
+  for (const FlightResult* r : flights) {
+    if (!r->success) continue;
+    ++*successful;
+    for (int i = 0; i < kModeSlots; ++i) mean[i] += (r->time_by_mode.*field)[i];
+  }
+  for (double& v : mean) v /= std::max(1, *successful);
+  return mean;
+}
+
 }  // namespace
 
 std::string stopCensusMarkdown(const std::vector<FlightResult>& results) {
@@ -101,6 +117,32 @@ std::string stopCensusMarkdown(const std::vector<FlightResult>& results) {
   return md.str();
 }
 
+std::string energyByModeMarkdown(const std::vector<FlightResult>& results) {
+  const Groups g = groupsOf(results);
+  std::ostringstream md;
+  md << "## Where the energy goes\n\n"
+        "Successful flights, mean per flight: the energy (integral of |jerk|^2, m^2/s^5) flown on "
+        "each mode's trajectory; the columns add up to the flight's energy. Per flight in "
+        "results.json (`energy_by_mode`).\n\n"
+        "| density | method | flights | FPM | SOM | EAM | stop | all |\n"
+        "|---|---|---|---|---|---|---|---|\n";
+  const int order[] = {1, 2, 3, 4};
+  for (double d : g.densities) {
+    for (const std::string& m : g.methods) {
+      int flights = 0;
+      const ModeSlots energy =
+          meanOfSuccessful(flightsOf(results, d, m), &TimeByMode::energy, &flights);
+      if (flights == 0) continue;
+      double all = 0;
+      for (double e : energy) all += e;
+      md << "| " << densityLabel(d) << " | " << m << " | " << flights;
+      for (int i : order) md << " | " << fmt(energy[i], 1);
+      md << " | " << fmt(all, 1) << " |\n";
+    }
+  }
+  return md.str();
+}
+
 std::string timeByModeMarkdown(const std::vector<FlightResult>& results) {
   const Groups g = groupsOf(results);
   std::ostringstream md;
@@ -117,22 +159,16 @@ std::string timeByModeMarkdown(const std::vector<FlightResult>& results) {
   const int order[kModeSlots] = {1, 2, 3, 4, 0};
   for (double d : g.densities) {
     for (const std::string& m : g.methods) {
-      std::array<double, kModeSlots> time{}, lost{};
+      const std::vector<const FlightResult*> flown = flightsOf(results, d, m);
       int flights = 0;
-      for (const FlightResult* r : flightsOf(results, d, m)) {
-        if (!r->success) continue;
-        ++flights;
-        for (int i = 0; i < kModeSlots; ++i) {
-          time[i] += r->time_by_mode.time_s[i];
-          lost[i] += r->time_by_mode.lost_s[i];
-        }
-      }
+      const ModeSlots time = meanOfSuccessful(flown, &TimeByMode::time_s, &flights);
+      const ModeSlots lost = meanOfSuccessful(flown, &TimeByMode::lost_s, &flights);
       if (flights == 0) continue;
       double lost_all = 0;
       md << "| " << densityLabel(d) << " | " << m << " | " << flights;
       for (int i : order) {
-        md << " | " << fmt(time[i] / flights, 2) << " (" << fmt(lost[i] / flights, 2) << ")";
-        lost_all += lost[i] / flights;
+        md << " | " << fmt(time[i], 2) << " (" << fmt(lost[i], 2) << ")";
+        lost_all += lost[i];
       }
       md << " | " << fmt(lost_all, 2) << " |\n";
     }
@@ -273,6 +309,7 @@ std::string summaryMarkdown(const std::vector<FlightResult>& results, const std:
         "cores).\n";
   md << "\n" << stopCensusMarkdown(results);
   md << "\n" << timeByModeMarkdown(results);
+  md << "\n" << energyByModeMarkdown(results);
   return md.str();
 }
 

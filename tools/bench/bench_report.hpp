@@ -32,6 +32,10 @@ std::string stopCensusMarkdown(const std::vector<FlightResult>& results);
 // mode and the time lost on it against v_max. Part of summaryMarkdown.
 std::string timeByModeMarkdown(const std::vector<FlightResult>& results);
 
+// Where the energy goes per density and method (successful flights): the mean integral of
+// |jerk|^2 flown on each mode. Part of summaryMarkdown.
+std::string energyByModeMarkdown(const std::vector<FlightResult>& results);
+
 std::string summaryMarkdown(const std::vector<FlightResult>& results, const std::string& command,
                             double wall_time_s);
 

@@ -112,6 +112,7 @@ nlohmann::json toJson(const FlightResult& r) {
       {"longest_no_progress_from_s", number(r.census.longest_no_progress_from_s)},
       {"time_by_mode_s", modeSlotsJson(r.time_by_mode.time_s)},
       {"time_lost_by_mode_s", modeSlotsJson(r.time_by_mode.lost_s)},
+      {"energy_by_mode", modeSlotsJson(r.time_by_mode.energy)},
   };
 }
 
@@ -158,6 +159,7 @@ FlightResult fromJson(const nlohmann::json& j) {
   r.census.longest_no_progress_from_s = number(j.at("longest_no_progress_from_s"));
   r.time_by_mode.time_s = modeSlotsFromJson(j, "time_by_mode_s");
   r.time_by_mode.lost_s = modeSlotsFromJson(j, "time_lost_by_mode_s");
+  r.time_by_mode.energy = modeSlotsFromJson(j, "energy_by_mode");
   return r;
 }
 

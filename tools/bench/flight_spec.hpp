@@ -37,7 +37,7 @@ struct FlightResult {
   double min_clearance_m = 0;
   int stops = 0;
   FlightCensus census;      // the stops with their causes, and the stalls
-  TimeByMode time_by_mode;  // time flown and lost against v_max per mode
+  TimeByMode time_by_mode;  // time flown, lost against v_max, and energy flown per mode
   double wall_time_s = 0;
   std::string error;   // non-empty when the flight could not run
   std::string reason;  // non-empty when it flew and failed: why (FlightRecord::failure_reason)

@@ -146,6 +146,7 @@ struct Vehicle {
       p.position = v.state().position;
       p.speed = v.state().velocity.norm();
       p.mode = current_mode;
+      p.energy = sim->metrics().energy;
       record.path.push_back(p);
       census.onProgress(sinceStart(now), (p.position - options.sim.goal).norm());
     }

@@ -52,7 +52,8 @@ struct PathSample {
   double t = 0.0;  // simulated seconds since the start
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   double speed = 0.0;
-  int mode = 0;  // mode of the trajectory being flown (plan_request_t.MODE_*), 0 = none
+  int mode = 0;         // mode of the trajectory being flown (plan_request_t.MODE_*), 0 = none
+  double energy = 0.0;  // integral of |jerk|^2 flown so far (MissionMetrics::energy)
 };
 
 struct FlightRecord {

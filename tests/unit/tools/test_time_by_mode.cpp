@@ -9,11 +9,12 @@
 namespace mmh {
 namespace {
 
-PathSample sample(double t, double speed, int mode) {
+PathSample sample(double t, double speed, int mode, double energy = 0.0) {
   PathSample s;
   s.t = t;
   s.speed = speed;
   s.mode = mode;
+  s.energy = energy;
   return s;
 }
 
@@ -33,6 +34,23 @@ TEST(TimeByMode, EachSampleHoldsItsModeAndSpeedUntilTheNext) {
   EXPECT_DOUBLE_EQ(t.lost_s[1], 0.0);    // at v_max: nothing lost
   EXPECT_DOUBLE_EQ(t.lost_s[3], 0.5);    // half speed for 1 s
   EXPECT_DOUBLE_EQ(t.lost_s[4], 0.375);  // a quarter for 0.5 s
+}
+
+TEST(TimeByMode, TheEnergyOfAStepCountsForTheModeFlownAtItsEnd) {
+  // Cumulative energy 0 at the start, 0.5 after the step into FPM, 2 after FPM, 12 after the step
+  // into EAM and EAM, 13 after the stop: a new trajectory's jerk comes right after its commit.
+  const std::vector<PathSample> path = {sample(0.0, 0.0, 0, 0.0), sample(1.0, 3.0, 1, 0.5),
+                                        sample(3.0, 1.5, 1, 2.0), sample(4.0, 0.75, 3, 12.0),
+                                        sample(4.5, 0.0, 4, 13.0)};
+  const TimeByMode t = timeByMode(path, 3.0);
+  EXPECT_DOUBLE_EQ(t.energy[0], 0.0);  // nothing flown before the first plan
+  EXPECT_DOUBLE_EQ(t.energy[1], 2.0);
+  EXPECT_DOUBLE_EQ(t.energy[2], 0.0);
+  EXPECT_DOUBLE_EQ(t.energy[3], 10.0);
+  EXPECT_DOUBLE_EQ(t.energy[4], 1.0);
+  double all = 0;
+  for (double e : t.energy) all += e;
+  EXPECT_DOUBLE_EQ(all, path.back().energy);  // the modes add up to the flight's energy
 }
 
 TEST(TimeByMode, LossAddsUpToTimeMinusDistanceOverVmax) {
@@ -68,15 +86,19 @@ TEST(TimeByMode, RoundTripsThroughResultsJsonAndReadsOldRecords) {
   r.success = true;
   r.time_by_mode.time_s = {0.5, 4.0, 6.0, 3.0, 0.2};
   r.time_by_mode.lost_s = {0.5, 0.1, 1.5, 0.9, 0.1};
+  r.time_by_mode.energy = {0.0, 3.5, 40.0, 20.5, 1.0};
   nlohmann::json j = bench::toJson(r);
   EXPECT_DOUBLE_EQ(j.at("time_by_mode_s").at("som").get<double>(), 6.0);
   EXPECT_DOUBLE_EQ(j.at("time_lost_by_mode_s").at("eam").get<double>(), 0.9);
   const bench::FlightResult back = bench::fromJson(j);
   EXPECT_EQ(back.time_by_mode.time_s, r.time_by_mode.time_s);
   EXPECT_EQ(back.time_by_mode.lost_s, r.time_by_mode.lost_s);
+  EXPECT_EQ(back.time_by_mode.energy, r.time_by_mode.energy);
   j.erase("time_by_mode_s");
   j.erase("time_lost_by_mode_s");
+  j.erase("energy_by_mode");
   EXPECT_DOUBLE_EQ(bench::fromJson(j).time_by_mode.time_s[2], 0.0);
+  EXPECT_DOUBLE_EQ(bench::fromJson(j).time_by_mode.energy[2], 0.0);
 }
 
 TEST(TimeByMode, SummaryTableHasOneRowPerDensityAndMethod) {
@@ -91,6 +113,21 @@ TEST(TimeByMode, SummaryTableHasOneRowPerDensityAndMethod) {
   EXPECT_NE(md.find("| 0.20 | mmh | 2 | 4.00 (0.10) | 6.00 (1.50) | 3.00 (0.90) | 0.20 (0.10) | "
                     "0.50 (0.50) | 3.10 |"),
             std::string::npos)
+      << md;
+}
+
+TEST(TimeByMode, EnergySummaryTableAddsTheModesUp) {
+  bench::FlightResult r;
+  r.spec.method = "som";
+  r.spec.density = 0.1;
+  r.success = true;
+  r.time_by_mode.energy = {0.0, 3.5, 40.0, 20.5, 1.0};
+  bench::FlightResult failed = r;
+  failed.success = false;  // only successful flights count, as in the other tables
+  failed.time_by_mode.energy = {0.0, 100.0, 100.0, 100.0, 100.0};
+  const std::string md = bench::energyByModeMarkdown({r, r, failed});
+  EXPECT_NE(md.find("## Where the energy goes"), std::string::npos);
+  EXPECT_NE(md.find("| 0.10 | som | 2 | 3.5 | 40.0 | 20.5 | 1.0 | 65.0 |"), std::string::npos)
       << md;
 }
 
