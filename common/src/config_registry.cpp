@@ -170,6 +170,11 @@ std::vector<KeySpec> buildKeys() {
                     "A start inside the inflation margin may leave it within this distance")),
       optional(real("som.start_escape_clearance_m", 0.0, 5.0, "0.28",
                     "... only outwards, never nearer to occupied cells than the start or this")),
+      optional(real("som.unknown_near_cost_cells", 0.0, 1000.0, "10.0",
+                    "A* cost (in cell steps) of entering an unknown cell near the start, where the "
+                    "camera has not looked (0: unknown space is free everywhere)")),
+      optional(real("som.unknown_near_radius_m", 0.0, 50.0, "2.5",
+                    "... a cell whose centre lies within this distance of the start")),
       optional(real("som.lead_min_speed_mps", 0.0, 100.0, "1.0",
                     "A start at least this fast whose A* path turns away sharply also tries a path "
                     "that first goes on ahead; the faster verified answer wins")),

@@ -25,6 +25,8 @@ SomParams loadSomParams(const Config& c) {
   p.astar_heuristic_weight = c.getDouble("som.astar_heuristic_weight");
   p.start_escape_radius_m = c.getDouble("som.start_escape_radius_m");
   p.start_escape_clearance_m = c.getDouble("som.start_escape_clearance_m");
+  p.unknown_near_start.cost_cells = c.getDouble("som.unknown_near_cost_cells");
+  p.unknown_near_start.radius_m = c.getDouble("som.unknown_near_radius_m");
   p.lead.min_speed_mps = c.getDouble("som.lead_min_speed_mps");
   p.lead.min_turn_deg = c.getDouble("som.lead_min_turn_deg");
   p.lead.reach = c.getDouble("som.lead_reach");

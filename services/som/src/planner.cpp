@@ -110,6 +110,7 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
   const double escape_min_distance =
       start_in_margin ? escapeMinDistance(grid, start.position, p.start_escape_clearance_m) : 0.0;
   astar_options.start_escape_min_distance_m = escape_min_distance;
+  astar_options.extra_step_cost = unknownNearStartCost(grid, start.position, p.unknown_near_start);
   const AStarResult found = astar_.search(grid, start.position, target, astar_options);
   out.astar_expansions = found.expansions;
   if (found.ok()) out.path = shortenPath(grid, withoutCollinearPoints(found.path));

@@ -8,6 +8,7 @@
 
 #include "mmh/common/config.hpp"
 #include "mmh/som/lead_point.hpp"
+#include "mmh/som/unknown_near_start.hpp"
 
 namespace mmh::som {
 
@@ -86,6 +87,9 @@ struct SomParams {
   // ... but only outwards: no point of the way out nearer to the occupied cells than the start,
   // or than this (whichever is less; mmh::escapeMinDistance).
   double start_escape_clearance_m = 0.28;
+  // A* keeps out of unknown space near the start when a way through mapped space is not much
+  // longer (unknown_near_start.hpp).
+  UnknownNearStartParams unknown_near_start;
   // The arbiter's check inflation (arbiter.check_inflation_m): an answer that enters a cell it
   // blocks is planned again with such cells kept out of the corridor (0: never).
   double arbiter_check_inflation_m = 0.25;
