@@ -7,6 +7,7 @@
 #include <functional>
 #include <memory>
 
+#include "mmh/common/trajectory.hpp"
 #include "mmh/common/voxel_grid.hpp"
 
 namespace som_test {
@@ -30,6 +31,13 @@ inline World makeWorld(const std::function<bool(const Eigen::Vector3d&)>& occupi
   }
   w.grid->setInflationRadius(inflation_m);
   return w;
+}
+
+// A start state at rest at p.
+inline mmh::KinematicState atRest(const Eigen::Vector3d& p) {
+  mmh::KinematicState s;
+  s.position = p;
+  return s;
 }
 
 inline bool inCylinder(const Eigen::Vector3d& p, double x, double y, double r) {

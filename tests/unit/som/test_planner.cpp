@@ -64,11 +64,7 @@ void expectVerified(const som_test::World& w, const mmh::KinematicState& start,
   EXPECT_GT(tm.astar.cpu_us + tm.corridor.cpu_us + tm.optimize.cpu_us, 0.0);
 }
 
-mmh::KinematicState atRest(const Vector3d& p) {
-  mmh::KinematicState s;
-  s.position = p;
-  return s;
-}
+using som_test::atRest;
 
 }  // namespace
 

@@ -42,11 +42,7 @@ Way wayAcross(const mmh::Trajectory& t, double wall_x) {
   return Way::kNeither;
 }
 
-mmh::KinematicState atRest(const Vector3d& p) {
-  mmh::KinematicState s;
-  s.position = p;
-  return s;
-}
+using som_test::atRest;
 
 }  // namespace
 
