@@ -81,9 +81,13 @@ fly() {
   echo "cpu $load density $density seed $seed: $result ${time_s:-?} s, latency p99 $(echo "$lat" | cut -d' ' -f2) ms"
 }
 
-: >"$out/flights.txt"
 IFS=, read -r -a load_list <<<"$loads"
 IFS=, read -r -a density_list <<<"$densities"
+# A report counts only this run's flights, also when OUT holds an earlier run.
+: >"$out/flights.txt"
+for load in "${load_list[@]}"; do
+  for density in "${density_list[@]}"; do : >"$out/reactions-cpu$load-d$density.txt"; done
+done
 for load in "${load_list[@]}"; do
   for density in "${density_list[@]}"; do
     for seed in $(seq "$first_seed" $((first_seed + seeds - 1))); do fly "$load" "$density" "$seed"; done
