@@ -62,7 +62,7 @@ void SomNode::onPlanRequest(const plan_request_t& req) {
                 t.astar.wall_us * 1e-3, t.corridor.wall_us * 1e-3,
                 static_cast<int>(last_.corridor.polytopes.size()), t.optimize.wall_us * 1e-3,
                 last_.optimizer_evaluations, t.verify.wall_us * 1e-3,
-                last_.check_margin_retries > 0 ? "; planned twice, off the arbiter's margin" : "",
+                last_.check_margin_retries > 0 ? "; planned again, off the arbiter's margin" : "",
                 leadPathNote(last_));
   result.status = last_.ok() ? plan_result_t::STATUS_OK : plan_result_t::STATUS_FAILED;
   result.reason = toWireReason(last_.status);

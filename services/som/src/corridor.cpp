@@ -208,7 +208,7 @@ bool CorridorBuilder::build(const VoxelGrid& grid, const std::vector<Eigen::Vect
       return false;
     }
     mask_.build(grid, box_lo, box_hi, escape, params.check_inflation_m,
-                params.check_face_clearance_m);
+                params.check_face_clearance_m, params.check_whole_cells);
     mask_.surfacePoints(&points_);
     out->surface_points += static_cast<int>(points_.size());
     Polytope poly;

@@ -42,7 +42,7 @@ bool EscapeZone::frees(const VoxelGrid& grid, const Eigen::Vector3i& local,
 
 bool BlockedMask::build(const VoxelGrid& grid, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
                         const EscapeZone& escape, double check_inflation_m,
-                        double check_face_clearance_m) {
+                        double check_face_clearance_m, bool check_whole_cells) {
   escape_faces_.clear();
   check_faces_.clear();
   Eigen::Vector3i f, l;
@@ -112,7 +112,10 @@ bool BlockedMask::build(const VoxelGrid& grid, const Eigen::Vector3d& lo, const 
     for (uint8_t& m : mask_)
       if (m == 2) m = 0;
   }
-  if (check_inflation_m > 0.0) addCheckFaces(grid, f, check_inflation_m, check_face_clearance_m);
+  if (check_inflation_m > 0.0 && check_whole_cells)
+    addCheckCellFences(grid, f, check_inflation_m, check_face_clearance_m);
+  else if (check_inflation_m > 0.0)
+    addCheckFaces(grid, f, check_inflation_m, check_face_clearance_m);
   return true;
 }
 
@@ -145,6 +148,58 @@ void BlockedMask::addCheckFaces(const VoxelGrid& grid, const Eigen::Vector3i& fi
             q[axis] += sign * (0.5 * res_ + clearance_m - kFaceInset);
             check_faces_.push_back(q);
           }
+      }
+}
+
+void BlockedMask::addCheckCellFences(const VoxelGrid& grid, const Eigen::Vector3i& first,
+                                     double check_inflation_m, double clearance_m) {
+  // The face points of addCheckFaces keep the polytopes off a face's centre only: a polytope may
+  // still cut across a corner of the cell, through the outer half of a neighbour that only the
+  // planning margin blocks or past an edge it shares with an unblocked cell.
+  static const std::vector<Eigen::Vector3i> kDirections = [] {
+    std::vector<Eigen::Vector3i> d;
+    for (int z = -1; z <= 1; ++z)
+      for (int y = -1; y <= 1; ++y)
+        for (int x = -1; x <= 1; ++x)
+          if (x != 0 || y != 0 || z != 0) d.emplace_back(x, y, z);
+    return d;
+  }();
+  const std::vector<Eigen::Vector3i> offsets =
+      VoxelGrid::offsetsWithin(check_inflation_m, grid.resolution());
+  within_check_.assign(mask_.size(), 0);  // only blocked cells can be within the smaller margin
+  for (int z = 0; z < n_.z() + 2; ++z)
+    for (int y = 0; y < n_.y() + 2; ++y)
+      for (int x = 0; x < n_.x() + 2; ++x) {
+        const int64_t i = z * sz_ + y * sy_ + x;
+        if (mask_[i] == 1)
+          within_check_[i] =
+              withinInflation(grid, first + Eigen::Vector3i(x - 1, y - 1, z - 1), offsets);
+      }
+  const double half = 0.5 * res_;
+  const double reach = half + clearance_m - kFaceInset;
+  for (int z = 1; z < n_.z() + 1; ++z)
+    for (int y = 1; y < n_.y() + 1; ++y)
+      for (int x = 1; x < n_.x() + 1; ++x) {
+        const int64_t i = z * sz_ + y * sy_ + x;
+        if (!within_check_[i]) continue;
+        const Eigen::Vector3d c = centerOf(x - 1, y - 1, z - 1);
+        for (const Eigen::Vector3i& d : kDirections) {
+          if (within_check_[i + d.x() + d.y() * sy_ + d.z() * sz_]) continue;
+          if (d.cwiseAbs().sum() > 1) {  // an edge or a corner
+            check_faces_.push_back(c + reach * d.cast<double>());
+            continue;
+          }
+          const int axis = d.x() != 0 ? 0 : (d.y() != 0 ? 1 : 2);
+          const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+          for (int a = -1; a <= 1; ++a)
+            for (int b = -1; b <= 1; ++b) {
+              Eigen::Vector3d q = c;
+              q[axis] += d[axis] * reach;
+              q[u] += a * half;
+              q[v] += b * half;
+              check_faces_.push_back(q);
+            }
+        }
       }
 }
 

@@ -141,9 +141,11 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
   // them (a wider corridor, fewer infeasible answers from fast starts), again with them when the
   // verified answer runs through such a cell: the arbiter would refuse it, and from the same
   // state SOM would give the same answer every round.
-  auto corridorToVerified = [&](double check_inflation_m) -> std::optional<PlanStatus> {
+  auto corridorToVerified = [&](double check_inflation_m,
+                                bool whole_cells = false) -> std::optional<PlanStatus> {
     CorridorParams corridor_params = p.corridor;
     corridor_params.check_inflation_m = check_inflation_m;
+    corridor_params.check_whole_cells = whole_cells;
     step.restart();
     std::string why;
     const bool corridor_ok =
@@ -180,14 +182,27 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
     }
     return std::nullopt;
   };
+  // Still through such a cell: once more with those cells fenced whole (many more obstacle
+  // points); that answer only if it keeps out of them.
   auto pathToVerified = [&]() -> std::optional<PlanStatus> {
     std::optional<PlanStatus> failed = corridorToVerified(p.corridor.check_inflation_m);
-    if (!failed && p.arbiter_check_inflation_m > p.corridor.check_inflation_m &&
-        entersCheckMargin(out.trajectory, grid, p.arbiter_check_inflation_m)) {
-      ++out.check_margin_retries;
-      failed = corridorToVerified(p.arbiter_check_inflation_m);
-    }
-    return failed;
+    auto entersMargin = [&] {
+      return entersCheckMargin(out.trajectory, grid, p.arbiter_check_inflation_m);
+    };
+    if (failed || p.arbiter_check_inflation_m <= p.corridor.check_inflation_m || !entersMargin())
+      return failed;
+    ++out.check_margin_retries;
+    failed = corridorToVerified(p.arbiter_check_inflation_m);
+    if (failed || !entersMargin()) return failed;
+    PlanOutput faces_only = out;
+    ++out.check_margin_retries;
+    if (!corridorToVerified(p.arbiter_check_inflation_m, true) && !entersMargin())
+      return std::nullopt;
+    faces_only.timings = out.timings;  // every try counts
+    faces_only.optimizer_evaluations = out.optimizer_evaluations;
+    faces_only.check_margin_retries = out.check_margin_retries;
+    out = std::move(faces_only);
+    return std::nullopt;
   };
   std::optional<PlanStatus> failed = pathToVerified();
 

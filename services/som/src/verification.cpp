@@ -75,23 +75,28 @@ VerifyReport verifyTrajectory(const Trajectory& traj, const KinematicState& star
   return r;
 }
 
-bool entersCheckMargin(const Trajectory& traj, const VoxelGrid& grid, double check_inflation_m,
-                       double step_s) {
+bool entersCheckMargin(const Trajectory& traj, const VoxelGrid& grid, double check_inflation_m) {
   if (traj.empty()) return false;
   const std::vector<Eigen::Vector3i> offsets =
       VoxelGrid::offsetsWithin(check_inflation_m, grid.resolution());
+  // The sample times of the arbiter's check (mmh::firstCollisionTime), so that both find the
+  // same cells: a corner cut a few millimetres deep is met by one sample or by none.
+  const double dt = std::max(1e-4, 0.25 * grid.resolution() / std::max(1e-3, traj.maxSpeed()));
+  const double end = traj.duration();
   bool leaving_start = true;
   Eigen::Vector3i last(INT32_MIN, INT32_MIN, INT32_MIN);
-  for (double s = 0.0; s <= traj.duration() + 0.5 * step_s; s += step_s) {
-    const Eigen::Vector3i cell = grid.localIndexOf(traj.position(std::min(s, traj.duration())));
-    if (cell == last) continue;
-    last = cell;
-    const bool blocked = withinInflation(grid, cell, offsets);
-    if (leaving_start) {
-      leaving_start = blocked;
-      continue;
+  for (double s = 0.0;; s += dt) {
+    const double at = std::min(s, end);
+    const Eigen::Vector3i cell = grid.localIndexOf(traj.position(at));
+    if (cell != last) {
+      last = cell;
+      const bool blocked = withinInflation(grid, cell, offsets);
+      if (leaving_start)
+        leaving_start = blocked;
+      else if (blocked)
+        return true;
     }
-    if (blocked) return true;
+    if (at >= end) break;
   }
   return false;
 }

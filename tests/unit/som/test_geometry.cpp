@@ -291,3 +291,49 @@ TEST(ObstaclePoints, CellsTheArbitersMarginBlocksAreFencedJustBeyondTheCorridorT
     EXPECT_TRUE(check.isBlockedPoint(across));
   }
 }
+
+TEST(ObstaclePoints, WholeCellFencesSurroundEveryCellOfTheArbitersMarginBesideOneOutsideIt) {
+  const som_test::World w = som_test::pillars();
+  const mmh::VoxelGrid& g = *w.grid;  // inflated 0.3 m
+  mmh::VoxelGrid check = g;
+  check.setInflationRadius(0.25);
+  const Vector3d lo(2.0, -1.5, 0.3), hi(6.0, 1.5, 2.0);
+  const double clearance = 0.021;
+  std::vector<Vector3d> plain, fenced;
+  mmh::som::BlockedMask mask;
+  ASSERT_TRUE(mask.build(g, lo, hi, {}));
+  mask.surfacePoints(&plain);
+  ASSERT_TRUE(mask.build(g, lo, hi, {}, 0.25, clearance, true));
+  mask.surfacePoints(&fenced);
+  // Brute force: per cell within the 0.25 m margin and neighbour (of 26) outside it, the 3 x 3
+  // points of their common face, or one point at their common edge or corner; each `clearance`
+  // beyond the cell along every axis the neighbour lies on, and no nearer to the cell.
+  size_t expected = 0;
+  for (int64_t i = 0; i < g.numCells(); ++i) {
+    const Eigen::Vector3i c = g.localFromLinear(i);
+    if (!check.isBlocked(c) || !som_test::inBox(g.centerOfLocal(c), lo, hi)) continue;
+    for (int z = -1; z <= 1; ++z)
+      for (int y = -1; y <= 1; ++y)
+        for (int x = -1; x <= 1; ++x) {
+          const Eigen::Vector3i d(x, y, z);
+          if (d.isZero() || check.isBlocked(c + d)) continue;
+          expected += d.cwiseAbs().sum() == 1 ? 9 : 1;
+        }
+  }
+  ASSERT_GT(expected, 500u);
+  ASSERT_EQ(fenced.size(), plain.size() + expected);
+  for (size_t k = plain.size(); k < fenced.size(); ++k) {
+    const Vector3d r = fenced[k] / g.resolution();
+    const Vector3d off = (r - r.array().round().matrix()).cwiseAbs() * g.resolution();
+    // Along each axis on a cell boundary, on a cell's middle or `clearance` beyond a boundary;
+    // beyond one along at least one axis.
+    int beyond = 0;
+    for (int a = 0; a < 3; ++a) {
+      const bool on = off[a] < 1e-5 || std::abs(off[a] - 0.5 * g.resolution()) < 1e-5;
+      const bool past = std::abs(off[a] - clearance) < 1e-5;
+      EXPECT_TRUE(on || past) << off.transpose();
+      beyond += past;
+    }
+    EXPECT_GE(beyond, 1);
+  }
+}

@@ -35,6 +35,10 @@ struct CorridorParams {
   // ... by faces this far outside them: just beyond the verification's corridor tolerance, so
   // that a trajectory verified to stay within it of its polytopes cannot touch such a cell.
   double check_face_clearance_m = 0.021;
+  // Points only on the faces towards unblocked 6-neighbours (false), or just off every side,
+  // edge and corner of such a cell that borders on a cell outside that margin (true; see
+  // BlockedMask::build).
+  bool check_whole_cells = false;
 };
 
 struct OptimizerParams {

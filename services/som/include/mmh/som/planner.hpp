@@ -39,8 +39,8 @@ struct PlanOutput {
   std::vector<int> piece_polytope;
   double cost_total = 0.0, cost_control = 0.0, cost_time = 0.0, cost_penalty = 0.0;
   int optimizer_evaluations = 0;
-  // Plans made again with the check-margin faces (the first ran through a cell the arbiter's
-  // check margin blocks; see Planner::plan).
+  // Plans made again with the check-margin faces, then with those cells fenced whole (the plan
+  // before ran through a cell the arbiter's check margin blocks; see Planner::plan).
   int check_margin_retries = 0;
   // Second candidates from a point ahead of a fast start (lead_point.hpp), and how many won.
   int lead_paths = 0;

@@ -33,10 +33,9 @@ VerifyReport verifyTrajectory(const Trajectory& traj, const KinematicState& star
                               double max_vel_mps, double max_acc_mps2, const VerifyParams& params,
                               double escape_min_distance_m = 0.0);
 
-// Whether `traj` (sampled every step_s) enters a cell whose centre lies within
-// check_inflation_m of an occupied cell - the cells the arbiter's own collision check blocks -
-// after it has left those it starts in (a start inside that margin may leave it).
-bool entersCheckMargin(const Trajectory& traj, const VoxelGrid& grid, double check_inflation_m,
-                       double step_s = 0.01);
+// Whether `traj` enters a cell whose centre lies within check_inflation_m of an occupied cell -
+// the cells the arbiter's own collision check blocks - after it has left those it starts in (a
+// start inside that margin may leave it). Sampled as the arbiter samples its check.
+bool entersCheckMargin(const Trajectory& traj, const VoxelGrid& grid, double check_inflation_m);
 
 }  // namespace mmh::som
