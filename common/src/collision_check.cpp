@@ -19,17 +19,17 @@ bool isSegmentFree(const VoxelGrid& grid, const Eigen::Vector3d& a, const Eigen:
   return true;
 }
 
+double collisionSampleStep(const VoxelGrid& grid, const Trajectory& traj) {
+  return std::max(1e-4, 0.25 * grid.resolution() / std::max(1e-3, traj.maxSpeed()));
+}
+
 std::optional<double> firstCollisionTime(const VoxelGrid& grid, const Trajectory& traj, double t0,
                                          double t1, CollisionLayer layer) {
   if (traj.empty()) return std::nullopt;
   t0 = std::max(0.0, t0);
   t1 = std::min(traj.duration(), t1);
   if (t1 < t0) return std::nullopt;
-  const double step_m = 0.25 * grid.resolution();
-  // Time step from the speed bound of the whole trajectory (exact maximum), so that no two
-  // samples are further apart than step_m.
-  const double vmax = std::max(1e-3, traj.maxSpeed());
-  const double dt = std::max(1e-4, step_m / vmax);
+  const double dt = collisionSampleStep(grid, traj);
   for (double t = t0;; t += dt) {
     const double tc = std::min(t, t1);
     if (isPointBlocked(grid, traj.position(tc), layer)) return tc;

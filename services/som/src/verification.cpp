@@ -1,5 +1,6 @@
 #include "mmh/som/verification.hpp"
 
+#include "mmh/common/collision_check.hpp"
 #include "mmh/common/trajectory_verifier.hpp"
 #include "mmh/som/obstacle_points.hpp"
 
@@ -81,7 +82,7 @@ bool entersCheckMargin(const Trajectory& traj, const VoxelGrid& grid, double che
       VoxelGrid::offsetsWithin(check_inflation_m, grid.resolution());
   // The sample times of the arbiter's check (mmh::firstCollisionTime), so that both find the
   // same cells: a corner cut a few millimetres deep is met by one sample or by none.
-  const double dt = std::max(1e-4, 0.25 * grid.resolution() / std::max(1e-3, traj.maxSpeed()));
+  const double dt = collisionSampleStep(grid, traj);
   const double end = traj.duration();
   bool leaving_start = true;
   Eigen::Vector3i last(INT32_MIN, INT32_MIN, INT32_MIN);

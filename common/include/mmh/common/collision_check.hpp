@@ -22,8 +22,13 @@ bool isPointBlocked(const VoxelGrid& grid, const Eigen::Vector3d& p,
 bool isSegmentFree(const VoxelGrid& grid, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                    CollisionLayer layer = CollisionLayer::kInflated);
 
-// First time in [t0, t1] (trajectory time) at which the trajectory is blocked, sampling so that
-// consecutive samples are at most resolution/4 apart in space. nullopt when free.
+// Time step of trajectory collision checks: samples at most resolution/4 apart in space at the
+// trajectory's exact maximum speed. A check that must find the same cells as another samples
+// at the same times.
+double collisionSampleStep(const VoxelGrid& grid, const Trajectory& traj);
+
+// First time in [t0, t1] (trajectory time) at which the trajectory is blocked, sampling every
+// collisionSampleStep from t0. nullopt when free.
 std::optional<double> firstCollisionTime(const VoxelGrid& grid, const Trajectory& traj, double t0,
                                          double t1,
                                          CollisionLayer layer = CollisionLayer::kInflated);
