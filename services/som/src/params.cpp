@@ -27,6 +27,9 @@ SomParams loadSomParams(const Config& c) {
   p.start_escape_clearance_m = c.getDouble("som.start_escape_clearance_m");
   p.unknown_near_start.cost_cells = c.getDouble("som.unknown_near_cost_cells");
   p.unknown_near_start.radius_m = c.getDouble("som.unknown_near_radius_m");
+  p.clearance.cost_cells = c.getDouble("som.clearance_cost_cells");
+  p.clearance.width_m = c.getDouble("som.clearance_width_m");
+  p.clearance.free_radius_m = c.getDouble("som.clearance_free_radius_m");
   p.lead.min_speed_mps = c.getDouble("som.lead_min_speed_mps");
   p.lead.min_turn_deg = c.getDouble("som.lead_min_turn_deg");
   p.lead.reach = c.getDouble("som.lead_reach");

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <functional>
 #include <optional>
 
 #include "mmh/common/collision_check.hpp"
@@ -54,6 +55,29 @@ std::vector<Eigen::Vector3d> withoutCollinearPoints(const std::vector<Eigen::Vec
   }
   out.push_back(path.back());
   return out;
+}
+
+using StepCost = std::function<double(const Eigen::Vector3i&, int64_t)>;
+
+// Both extra A* costs (either may be empty: no cost).
+StepCost sumOfCosts(StepCost a, StepCost b) {
+  if (!a) return b;
+  if (!b) return a;
+  return [a = std::move(a), b = std::move(b)](const Eigen::Vector3i& local, int64_t index) {
+    return a(local, index) + b(local, index);
+  };
+}
+
+// An earlier answer taken after later tries: its result with the effort of every try (times,
+// expansions, evaluations and the counts of retries and second candidates).
+PlanOutput withEffortOf(PlanOutput answer, const PlanOutput& latest) {
+  answer.timings = latest.timings;
+  answer.astar_expansions = latest.astar_expansions;
+  answer.optimizer_evaluations = latest.optimizer_evaluations;
+  answer.check_margin_retries = latest.check_margin_retries;
+  answer.lead_paths = latest.lead_paths;
+  answer.clearance_fallbacks = latest.clearance_fallbacks;
+  return answer;
 }
 
 }  // namespace
@@ -110,12 +134,34 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
   const double escape_min_distance =
       start_in_margin ? escapeMinDistance(grid, start.position, p.start_escape_clearance_m) : 0.0;
   astar_options.start_escape_min_distance_m = escape_min_distance;
-  astar_options.extra_step_cost = unknownNearStartCost(grid, start.position, p.unknown_near_start);
-  const AStarResult found = astar_.search(grid, start.position, target, astar_options);
-  out.astar_expansions = found.expansions;
-  if (found.ok()) out.path = shortenPath(grid, withoutCollinearPoints(found.path));
-  step.addTo(&out.timings.astar);
-  switch (found.status) {
+  const StepCost unknown_cost = unknownNearStartCost(grid, start.position, p.unknown_near_start);
+  const StepCost clearance_cost = clearance_cost_.forGrid(grid, start.position, p.clearance);
+  // A path that keeps clear leaves the straight line more readily; its shortcuts must then also
+  // keep out of the unknown cells near the start that the search paid to avoid, or the first
+  // leg cuts through the unseen space beside the vehicle after all.
+  const auto unknown_near_start = inUnknownNearStart(grid, start.position, p.unknown_near_start);
+  std::function<bool(const Eigen::Vector3d&)> keep_out;
+  // The path, with the clearance cost (if on) or without it.
+  auto searchPath = [&](bool keep_clear) {
+    step.restart();
+    astar_options.extra_step_cost =
+        keep_clear ? sumOfCosts(unknown_cost, clearance_cost) : unknown_cost;
+    keep_out = keep_clear ? unknown_near_start : nullptr;
+    const AStarResult found = astar_.search(grid, start.position, target, astar_options);
+    out.astar_expansions += found.expansions;
+    if (found.ok()) out.path = shortenPath(grid, withoutCollinearPoints(found.path), keep_out);
+    step.addTo(&out.timings.astar);
+    return found.status;
+  };
+  bool keep_clear = static_cast<bool>(clearance_cost);
+  AStarResult::Status found = searchPath(keep_clear);
+  if (keep_clear &&
+      (found == AStarResult::Status::kNoPath || found == AStarResult::Status::kBudgetExceeded)) {
+    keep_clear = false;
+    ++out.clearance_fallbacks;
+    found = searchPath(false);
+  }
+  switch (found) {
     case AStarResult::Status::kFound:
       break;
     case AStarResult::Status::kStartBlocked:
@@ -126,7 +172,7 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
       return finish(PlanStatus::kBadInput, "start or target outside the map window");
     case AStarResult::Status::kNoPath:
     case AStarResult::Status::kBudgetExceeded:
-      return finish(PlanStatus::kNoPath, std::string("A*: ") + toString(found.status));
+      return finish(PlanStatus::kNoPath, std::string("A*: ") + toString(found));
   }
 
   // --- corridor, optimisation, verification ------------------------------------------------
@@ -198,42 +244,56 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
     ++out.check_margin_retries;
     if (!corridorToVerified(p.arbiter_check_inflation_m, true) && !entersMargin())
       return std::nullopt;
-    faces_only.timings = out.timings;  // every try counts
-    faces_only.optimizer_evaluations = out.optimizer_evaluations;
-    faces_only.check_margin_retries = out.check_margin_retries;
-    out = std::move(faces_only);
+    out = withEffortOf(std::move(faces_only), out);
     return std::nullopt;
   };
-  std::optional<PlanStatus> failed = pathToVerified();
-
-  // A fast start whose path turns away sharply: also the path that first goes on ahead; the
-  // faster verified trajectory (both end at the target at rest) is the answer.
-  if (!start_in_margin && out.path.size() >= 2 &&
-      turnsAwayFromVelocity(start, out.path[1], p.lead)) {
-    if (const auto lead = leadPoint(grid, start, p.max_acc_mps2, bound_lo, bound_hi, p.lead)) {
-      step.restart();
-      const AStarResult ahead = astar_.search(grid, *lead, target, astar_options);
-      out.astar_expansions += ahead.expansions;
-      step.addTo(&out.timings.astar);
-      if (ahead.ok()) {
-        PlanOutput first = out;
-        out.path = {start.position};
-        for (const Eigen::Vector3d& q : shortenPath(grid, withoutCollinearPoints(ahead.path)))
-          out.path.push_back(q);
-        ++out.lead_paths;
-        const std::optional<PlanStatus> failed_ahead = pathToVerified();
-        if (!failed_ahead && (failed || out.trajectory.duration() < first.trajectory.duration())) {
-          failed = std::nullopt;
-          ++out.lead_paths_taken;
-        } else {
-          first.timings = out.timings;  // both tries count
-          first.lead_paths = out.lead_paths;
-          first.astar_expansions = out.astar_expansions;
-          first.optimizer_evaluations = out.optimizer_evaluations;
-          first.check_margin_retries = out.check_margin_retries;
-          out = std::move(first);
+  // Along out.path; and for a fast start whose path turns away sharply: also the path that first
+  // goes on ahead; the faster verified trajectory (both end at the target at rest) is the answer.
+  auto planAlongPath = [&]() -> std::optional<PlanStatus> {
+    std::optional<PlanStatus> failed = pathToVerified();
+    if (!start_in_margin && out.path.size() >= 2 &&
+        turnsAwayFromVelocity(start, out.path[1], p.lead)) {
+      if (const auto lead = leadPoint(grid, start, p.max_acc_mps2, bound_lo, bound_hi, p.lead)) {
+        step.restart();
+        const AStarResult ahead = astar_.search(grid, *lead, target, astar_options);
+        out.astar_expansions += ahead.expansions;
+        step.addTo(&out.timings.astar);
+        if (ahead.ok()) {
+          PlanOutput first = out;
+          out.path = {start.position};
+          for (const Eigen::Vector3d& q :
+               shortenPath(grid, withoutCollinearPoints(ahead.path), keep_out))
+            out.path.push_back(q);
+          ++out.lead_paths;
+          const std::optional<PlanStatus> failed_ahead = pathToVerified();
+          if (!failed_ahead &&
+              (failed || out.trajectory.duration() < first.trajectory.duration())) {
+            failed = std::nullopt;
+            ++out.lead_paths_taken;
+          } else {
+            out = withEffortOf(std::move(first), out);
+          }
         }
       }
+    }
+    return failed;
+  };
+  std::optional<PlanStatus> failed = planAlongPath();
+  // The clearance cost is a preference: where its way gives no answer (a fast start may not
+  // turn to the wider gap), or one the arbiter would refuse, the shortest way may do better.
+  auto entersMargin = [&] {
+    return p.arbiter_check_inflation_m > p.corridor.check_inflation_m &&
+           entersCheckMargin(out.trajectory, grid, p.arbiter_check_inflation_m);
+  };
+  if (keep_clear && (failed || entersMargin())) {
+    PlanOutput kept_clear = out;
+    ++out.clearance_fallbacks;
+    const std::optional<PlanStatus> failed_before = failed;
+    if (searchPath(false) == AStarResult::Status::kFound) failed = planAlongPath();
+    if (!failed_before && (failed || entersMargin())) {
+      // Neither keeps out of the margin: the first answer, as without the fallback.
+      out = withEffortOf(std::move(kept_clear), out);
+      failed = std::nullopt;
     }
   }
   if (failed) return finish(*failed, out.detail);

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "mmh/common/collision_check.hpp"
@@ -135,6 +136,33 @@ TEST(ShortenPath, KeepsOnlyTurnPointsAndStaysFree) {
   EXPECT_LE(mmh::pathLength(short_path), mmh::pathLength(r.path) + 1e-9);
   for (size_t i = 1; i < short_path.size(); ++i)
     EXPECT_TRUE(mmh::isSegmentFree(g, short_path[i - 1], short_path[i]));
+}
+
+TEST(ShortenPath, KeepsShortcutsOutOfTheGivenSpaceButKeepsThePathsOwnSteps) {
+  // An L-shaped path in free space: up x = 0.5 to y = 5.5, then along y = 5.5 to x = 5.5.
+  VoxelGrid g = unitGrid(8, 8, 1);
+  std::vector<Vector3d> path;
+  for (int y = 0; y <= 5; ++y) path.push_back(cell(0, y, 0));
+  for (int x = 1; x <= 5; ++x) path.push_back(cell(x, 5, 0));
+  const auto cut = mmh::shortenPath(g, path);
+  ASSERT_EQ(cut.size(), 2u);  // free space: one straight segment
+
+  // Kept out: the inside of the L (x > 1, y < 5) and, on the path itself, the cell (0, 2).
+  auto keep_out = [](const Vector3d& p) {
+    return (p.x() > 1.0 && p.y() < 5.0) || (p.x() < 1.0 && p.y() > 2.0 && p.y() < 3.0);
+  };
+  const auto kept = mmh::shortenPath(g, path, keep_out);
+  ASSERT_GE(kept.size(), 3u);
+  EXPECT_EQ(kept.front(), path.front());
+  EXPECT_EQ(kept.back(), path.back());
+  for (size_t i = 1; i < kept.size(); ++i) {
+    const Vector3d a = kept[i - 1], b = kept[i];
+    const bool own_step = (a - b).norm() <= std::sqrt(3.0) + 1e-9;  // neighbouring path points
+    for (int k = 0; k <= 100 && !own_step; ++k)
+      EXPECT_FALSE(keep_out(a + (b - a) * (k / 100.0))) << "shortcut " << i << " enters it";
+  }
+  // The corner stays.
+  EXPECT_NE(std::find(kept.begin(), kept.end(), cell(0, 5, 0)), kept.end());
 }
 
 TEST(GridAStar, WeightedSearchExpandsLessAndStaysWithinItsBound) {

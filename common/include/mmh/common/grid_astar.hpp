@@ -69,9 +69,13 @@ class GridAStar {
   std::vector<OpenEntry> open_;  // the open list's storage, reused across searches
 };
 
-// Removes intermediate points while the straight segment between kept points stays free.
-std::vector<Eigen::Vector3d> shortenPath(const VoxelGrid& grid,
-                                         const std::vector<Eigen::Vector3d>& path);
+// Removes intermediate points while the straight segment between kept points stays free and
+// out of every point `keep_out` (if given) is true for: the space the search paid extra to avoid
+// (AStarOptions::extra_step_cost), which a shortcut would otherwise cross after all. Steps
+// between neighbouring points of `path` are always kept.
+std::vector<Eigen::Vector3d> shortenPath(
+    const VoxelGrid& grid, const std::vector<Eigen::Vector3d>& path,
+    const std::function<bool(const Eigen::Vector3d&)>& keep_out = {});
 
 double pathLength(const std::vector<Eigen::Vector3d>& path);
 

@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "mmh/common/config.hpp"
+#include "mmh/som/clearance_cost.hpp"
 #include "mmh/som/lead_point.hpp"
 #include "mmh/som/unknown_near_start.hpp"
 
@@ -94,6 +95,9 @@ struct SomParams {
   // A* keeps out of unknown space near the start when a way through mapped space is not much
   // longer (unknown_near_start.hpp).
   UnknownNearStartParams unknown_near_start;
+  // A* keeps away from the inflated obstacles where a wider way is not much longer
+  // (clearance_cost.hpp).
+  ClearanceCostParams clearance;
   // The arbiter's check inflation (arbiter.check_inflation_m): an answer that enters a cell it
   // blocks is planned again with such cells kept out of the corridor (0: never).
   double arbiter_check_inflation_m = 0.25;

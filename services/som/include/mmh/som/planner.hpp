@@ -12,6 +12,7 @@
 #include "mmh/common/plan_status.hpp"
 #include "mmh/common/trajectory.hpp"
 #include "mmh/common/voxel_grid.hpp"
+#include "mmh/som/clearance_cost.hpp"
 #include "mmh/som/corridor.hpp"
 #include "mmh/som/params.hpp"
 #include "mmh/som/trajectory_optimizer.hpp"
@@ -45,6 +46,9 @@ struct PlanOutput {
   // Second candidates from a point ahead of a fast start (lead_point.hpp), and how many won.
   int lead_paths = 0;
   int lead_paths_taken = 0;
+  // Paths searched again without the clearance cost (clearance_cost.hpp): its search found no
+  // path, or no verified answer along it.
+  int clearance_fallbacks = 0;
   int64_t astar_expansions = 0;
   VerifyReport verify;
   PlanTimings timings;
@@ -63,12 +67,16 @@ class Planner {
                   double max_speed_mps = 0.0);
   // Sizes the per-cell search arrays for this grid's window (call when a map arrives; cheap
   // unless the window size changed) so that plan() does not pay for it.
-  void prepare(const VoxelGrid& grid) { astar_.reserve(grid.numCells()); }
+  void prepare(const VoxelGrid& grid) {
+    astar_.reserve(grid.numCells());
+    if (params_.clearance.cost_cells > 0.0) clearance_cost_.reserve(grid.numCells());
+  }
 
  private:
   SomParams params_;  // max_vel_mps: the speed limit of the current plan
   double vehicle_max_vel_mps_;
   GridAStar astar_;
+  ClearanceCost clearance_cost_;
   CorridorBuilder corridor_builder_;
   TrajectoryOptimizer optimizer_;
 };

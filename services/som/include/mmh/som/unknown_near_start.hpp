@@ -25,4 +25,10 @@ struct UnknownNearStartParams {
 std::function<double(const Eigen::Vector3i&, int64_t)> unknownNearStartCost(
     const VoxelGrid& grid, const Eigen::Vector3d& start, const UnknownNearStartParams& params);
 
+// The same cells as points, for shortenPath's keep_out: true for a point in an unknown cell whose
+// centre lies within radius_m of `start`, other than the start's own cell. Empty when either
+// parameter is 0. `grid` must outlive the returned function.
+std::function<bool(const Eigen::Vector3d&)> inUnknownNearStart(
+    const VoxelGrid& grid, const Eigen::Vector3d& start, const UnknownNearStartParams& params);
+
 }  // namespace mmh::som
