@@ -10,11 +10,13 @@ bool isPointBlocked(const VoxelGrid& grid, const Eigen::Vector3d& p, CollisionLa
 }
 
 bool isSegmentFree(const VoxelGrid& grid, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                   CollisionLayer layer) {
+                   CollisionLayer layer,
+                   const std::function<bool(const Eigen::Vector3d&)>& also_blocked) {
   const double step = 0.25 * grid.resolution();
   const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step)));
   for (int i = 0; i <= n; ++i) {
-    if (isPointBlocked(grid, a + (b - a) * (static_cast<double>(i) / n), layer)) return false;
+    const Eigen::Vector3d p = a + (b - a) * (static_cast<double>(i) / n);
+    if (isPointBlocked(grid, p, layer) || (also_blocked && also_blocked(p))) return false;
   }
   return true;
 }

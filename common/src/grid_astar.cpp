@@ -180,22 +180,15 @@ std::vector<Eigen::Vector3d> shortenPath(
     const VoxelGrid& grid, const std::vector<Eigen::Vector3d>& path,
     const std::function<bool(const Eigen::Vector3d&)>& keep_out) {
   if (path.size() <= 2) return path;
-  auto shortcutAllowed = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-    if (!isSegmentFree(grid, a, b)) return false;
-    if (!keep_out) return true;
-    const int n =
-        std::max(1, static_cast<int>(std::ceil((b - a).norm() / (0.25 * grid.resolution()))));
-    for (int i = 0; i <= n; ++i)
-      if (keep_out(a + (b - a) * (static_cast<double>(i) / n))) return false;
-    return true;
-  };
   std::vector<Eigen::Vector3d> out{path.front()};
   size_t anchor = 0;
   while (anchor + 1 < path.size()) {
     // Walk forward while the straight segment from the anchor stays free; the adjacent point
     // is always reachable (A* moved there).
     size_t next = anchor + 1;
-    while (next + 1 < path.size() && shortcutAllowed(path[anchor], path[next + 1])) ++next;
+    while (next + 1 < path.size() &&
+           isSegmentFree(grid, path[anchor], path[next + 1], CollisionLayer::kInflated, keep_out))
+      ++next;
     out.push_back(path[next]);
     anchor = next;
   }

@@ -8,13 +8,23 @@ namespace mmh::som {
 
 namespace {
 
-// Probe directions: the six axes and the four horizontal diagonals (trunks are vertical, so the
-// horizontal clearance is what a gap between them offers).
-const std::array<Eigen::Vector3i, 10> kProbes = {
-    Eigen::Vector3i(1, 0, 0),  Eigen::Vector3i(-1, 0, 0), Eigen::Vector3i(0, 1, 0),
-    Eigen::Vector3i(0, -1, 0), Eigen::Vector3i(0, 0, 1),  Eigen::Vector3i(0, 0, -1),
-    Eigen::Vector3i(1, 1, 0),  Eigen::Vector3i(1, -1, 0), Eigen::Vector3i(-1, 1, 0),
-    Eigen::Vector3i(-1, -1, 0)};
+// Probe directions with their step lengths in cells: the six axes and the four horizontal
+// diagonals (trunks are vertical, so the horizontal clearance is what a gap between them offers).
+struct Probe {
+  Eigen::Vector3i direction;
+  double step_cells;
+};
+const double kDiagonal = std::sqrt(2.0);
+const std::array<Probe, 10> kProbes = {{{{1, 0, 0}, 1.0},
+                                        {{-1, 0, 0}, 1.0},
+                                        {{0, 1, 0}, 1.0},
+                                        {{0, -1, 0}, 1.0},
+                                        {{0, 0, 1}, 1.0},
+                                        {{0, 0, -1}, 1.0},
+                                        {{1, 1, 0}, kDiagonal},
+                                        {{1, -1, 0}, kDiagonal},
+                                        {{-1, 1, 0}, kDiagonal},
+                                        {{-1, -1, 0}, kDiagonal}}};
 
 }  // namespace
 
@@ -28,11 +38,11 @@ double ClearanceCost::cellCost(const VoxelGrid& grid, const Eigen::Vector3i& loc
   const int max_steps = static_cast<int>(std::ceil(params.width_m / res + 0.5));
   double clearance = params.width_m;
   for (int k = 1; k <= max_steps; ++k) {
-    for (const Eigen::Vector3i& d : kProbes) {
-      const double reach = k * (d.cwiseAbs().sum() == 1 ? 1.0 : std::sqrt(2.0)) * res - 0.5 * res;
-      if (reach < clearance && grid.isBlocked(local + k * d)) clearance = reach;
+    for (const Probe& probe : kProbes) {
+      const double reach = (k * probe.step_cells - 0.5) * res;
+      if (reach < clearance && grid.isBlocked(local + k * probe.direction)) clearance = reach;
     }
-    if ((k + 1) * res - 0.5 * res >= clearance) break;  // no farther step can come nearer
+    if ((k + 0.5) * res >= clearance) break;  // no farther step can come nearer
   }
   return params.cost_cells * std::max(0.0, 1.0 - clearance / params.width_m);
 }

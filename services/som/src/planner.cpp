@@ -230,13 +230,14 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
   };
   // Still through such a cell: once more with those cells fenced whole (many more obstacle
   // points); that answer only if it keeps out of them.
+  // Whether the answer in `out` runs through a cell of the arbiter's larger check margin.
+  auto entersMargin = [&] {
+    return p.arbiter_check_inflation_m > p.corridor.check_inflation_m &&
+           entersCheckMargin(out.trajectory, grid, p.arbiter_check_inflation_m);
+  };
   auto pathToVerified = [&]() -> std::optional<PlanStatus> {
     std::optional<PlanStatus> failed = corridorToVerified(p.corridor.check_inflation_m);
-    auto entersMargin = [&] {
-      return entersCheckMargin(out.trajectory, grid, p.arbiter_check_inflation_m);
-    };
-    if (failed || p.arbiter_check_inflation_m <= p.corridor.check_inflation_m || !entersMargin())
-      return failed;
+    if (failed || !entersMargin()) return failed;
     ++out.check_margin_retries;
     failed = corridorToVerified(p.arbiter_check_inflation_m);
     if (failed || !entersMargin()) return failed;
@@ -281,10 +282,6 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
   std::optional<PlanStatus> failed = planAlongPath();
   // The clearance cost is a preference: where its way gives no answer (a fast start may not
   // turn to the wider gap), or one the arbiter would refuse, the shortest way may do better.
-  auto entersMargin = [&] {
-    return p.arbiter_check_inflation_m > p.corridor.check_inflation_m &&
-           entersCheckMargin(out.trajectory, grid, p.arbiter_check_inflation_m);
-  };
   if (keep_clear && (failed || entersMargin())) {
     PlanOutput kept_clear = out;
     ++out.clearance_fallbacks;

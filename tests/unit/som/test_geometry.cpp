@@ -250,87 +250,89 @@ TEST(ObstaclePoints, EscapeZoneFreesOnlyTheMarginAroundTheStart) {
   }
 }
 
-TEST(ObstaclePoints, CellsTheArbitersMarginBlocksAreFencedJustBeyondTheCorridorTolerance) {
-  const som_test::World w = som_test::pillars();
-  const mmh::VoxelGrid& g = *w.grid;  // inflated 0.3 m
-  mmh::VoxelGrid check = g;
-  check.setInflationRadius(0.25);
-  const Vector3d lo(2.0, -1.5, 0.3), hi(6.0, 1.5, 2.0);
+// The pillars (inflated 0.3 m) seen through the arbiter's 0.25 m check margin, and a box of
+// them: the surface points without check-margin points, and with them (faces only, or whole-cell
+// fences).
+struct CheckMarginPoints {
+  explicit CheckMarginPoints(bool whole_cells) : w(som_test::pillars()), check(*w.grid) {
+    check.setInflationRadius(0.25);
+    mmh::som::BlockedMask mask;
+    built = mask.build(*w.grid, lo, hi, {});
+    mask.surfacePoints(&plain);
+    built = built && mask.build(*w.grid, lo, hi, {}, 0.25, clearance, whole_cells);
+    mask.surfacePoints(&with_margin);
+  }
+  som_test::World w;
+  mmh::VoxelGrid check;
+  const Vector3d lo = Vector3d(2.0, -1.5, 0.3), hi = Vector3d(6.0, 1.5, 2.0);
   const double clearance = 0.021;  // SOM's: the verification's corridor tolerance + 1 mm
-  std::vector<Vector3d> plain, with_faces;
-  mmh::som::BlockedMask mask;
-  ASSERT_TRUE(mask.build(g, lo, hi, {}));
-  mask.surfacePoints(&plain);
-  ASSERT_TRUE(mask.build(g, lo, hi, {}, 0.25, clearance));
-  mask.surfacePoints(&with_faces);
+  bool built = false;
+  std::vector<Vector3d> plain, with_margin;
+};
+
+TEST(ObstaclePoints, CellsTheArbitersMarginBlocksAreFencedJustBeyondTheCorridorTolerance) {
+  const CheckMarginPoints m(false);
+  ASSERT_TRUE(m.built);
+  const mmh::VoxelGrid& g = *m.w.grid;
   // Brute force: one point per face between a surface cell that the 0.25 m margin blocks and an
   // unblocked 6-neighbour, `clearance` off that face inside the neighbour, so that a trajectory
   // that leaves its polytope by less than that does not touch the blocked cell.
   size_t expected = 0;
   for (int64_t i = 0; i < g.numCells(); ++i) {
     const Eigen::Vector3i c = g.localFromLinear(i);
-    if (!g.isBlockedLinear(i) || !check.isBlocked(c) ||
-        !som_test::inBox(g.centerOfLocal(c), lo, hi))
+    if (!g.isBlockedLinear(i) || !m.check.isBlocked(c) ||
+        !som_test::inBox(g.centerOfLocal(c), m.lo, m.hi))
       continue;
     for (int d = 0; d < 3; ++d)
       for (int s : {-1, 1}) expected += !g.isBlocked(c + s * Eigen::Vector3i::Unit(d));
   }
   ASSERT_GT(expected, 50u);
-  ASSERT_EQ(with_faces.size(), plain.size() + expected);
-  for (size_t k = plain.size(); k < with_faces.size(); ++k) {
-    const Vector3d& q = with_faces[k];
+  ASSERT_EQ(m.with_margin.size(), m.plain.size() + expected);
+  for (size_t k = m.plain.size(); k < m.with_margin.size(); ++k) {
+    const Vector3d& q = m.with_margin[k];
     EXPECT_FALSE(g.isBlockedPoint(q));
     // `clearance` from a cell face, and that face is a blocked cell's.
     const Vector3d r = q / g.resolution();
     const Vector3d off = r - r.array().round().matrix();
     int axis = 0;
     off.cwiseAbs().minCoeff(&axis);
-    EXPECT_NEAR(std::abs(off[axis]) * g.resolution(), clearance, 1e-5);
+    EXPECT_NEAR(std::abs(off[axis]) * g.resolution(), m.clearance, 1e-5);
     Vector3d across = q;
-    across[axis] -= (off[axis] > 0 ? 1 : -1) * (clearance + 1e-4);
-    EXPECT_TRUE(check.isBlockedPoint(across));
+    across[axis] -= (off[axis] > 0 ? 1 : -1) * (m.clearance + 1e-4);
+    EXPECT_TRUE(m.check.isBlockedPoint(across));
   }
 }
 
 TEST(ObstaclePoints, WholeCellFencesSurroundEveryCellOfTheArbitersMarginBesideOneOutsideIt) {
-  const som_test::World w = som_test::pillars();
-  const mmh::VoxelGrid& g = *w.grid;  // inflated 0.3 m
-  mmh::VoxelGrid check = g;
-  check.setInflationRadius(0.25);
-  const Vector3d lo(2.0, -1.5, 0.3), hi(6.0, 1.5, 2.0);
-  const double clearance = 0.021;
-  std::vector<Vector3d> plain, fenced;
-  mmh::som::BlockedMask mask;
-  ASSERT_TRUE(mask.build(g, lo, hi, {}));
-  mask.surfacePoints(&plain);
-  ASSERT_TRUE(mask.build(g, lo, hi, {}, 0.25, clearance, true));
-  mask.surfacePoints(&fenced);
+  const CheckMarginPoints m(true);
+  ASSERT_TRUE(m.built);
+  const mmh::VoxelGrid& g = *m.w.grid;
   // Brute force: per cell within the 0.25 m margin and neighbour (of 26) outside it, the 3 x 3
   // points of their common face, or one point at their common edge or corner; each `clearance`
   // beyond the cell along every axis the neighbour lies on, and no nearer to the cell.
   size_t expected = 0;
   for (int64_t i = 0; i < g.numCells(); ++i) {
     const Eigen::Vector3i c = g.localFromLinear(i);
-    if (!check.isBlocked(c) || !som_test::inBox(g.centerOfLocal(c), lo, hi)) continue;
+    if (!m.check.isBlocked(c) || !som_test::inBox(g.centerOfLocal(c), m.lo, m.hi)) continue;
     for (int z = -1; z <= 1; ++z)
       for (int y = -1; y <= 1; ++y)
         for (int x = -1; x <= 1; ++x) {
           const Eigen::Vector3i d(x, y, z);
-          if (d.isZero() || check.isBlocked(c + d)) continue;
+          if (d.isZero() || m.check.isBlocked(c + d)) continue;
           expected += d.cwiseAbs().sum() == 1 ? 9 : 1;
         }
   }
   ASSERT_GT(expected, 500u);
-  ASSERT_EQ(fenced.size(), plain.size() + expected);
-  for (size_t k = plain.size(); k < fenced.size(); ++k) {
-    const Vector3d r = fenced[k] / g.resolution();
+  ASSERT_EQ(m.with_margin.size(), m.plain.size() + expected);
+  for (size_t k = m.plain.size(); k < m.with_margin.size(); ++k) {
+    const Vector3d r = m.with_margin[k] / g.resolution();
     const Vector3d off = (r - r.array().round().matrix()).cwiseAbs() * g.resolution();
     // Along each axis on a cell boundary, on a cell's middle or `clearance` beyond a boundary;
     // beyond one along at least one axis.
     int beyond = 0;
     for (int a = 0; a < 3; ++a) {
       const bool on = off[a] < 1e-5 || std::abs(off[a] - 0.5 * g.resolution()) < 1e-5;
-      const bool past = std::abs(off[a] - clearance) < 1e-5;
+      const bool past = std::abs(off[a] - m.clearance) < 1e-5;
       EXPECT_TRUE(on || past) << off.transpose();
       beyond += past;
     }

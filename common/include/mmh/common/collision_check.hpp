@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <optional>
 
 #include "mmh/common/trajectory.hpp"
@@ -18,9 +19,11 @@ enum class CollisionLayer {
 bool isPointBlocked(const VoxelGrid& grid, const Eigen::Vector3d& p,
                     CollisionLayer layer = CollisionLayer::kInflated);
 
-// Samples the segment at most resolution/4 apart (end points included).
+// Samples the segment at most resolution/4 apart (end points included); a sample is also
+// blocked where `also_blocked` (if given) is true.
 bool isSegmentFree(const VoxelGrid& grid, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                   CollisionLayer layer = CollisionLayer::kInflated);
+                   CollisionLayer layer = CollisionLayer::kInflated,
+                   const std::function<bool(const Eigen::Vector3d&)>& also_blocked = {});
 
 // Time step of trajectory collision checks: samples at most resolution/4 apart in space at the
 // trajectory's exact maximum speed. A check that must find the same cells as another samples
