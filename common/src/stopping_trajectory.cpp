@@ -432,10 +432,17 @@ Trajectory chooseStoppingTrajectory(const VoxelGrid* grid, const Trajectory& pat
   if (along.clear) return straight.clear ? straight.trajectory : along.trajectory;
   // Braking along is refused by the caller's condition alone: the clear straight stop.
   if (straight.clear && !along.meets_condition) return straight.trajectory;
+  // The safest of the swerves that are not clear, inside the fence, kept in case both braking
+  // stops would bring the airframe into an occupied cell.
+  std::optional<CandidateStop> safest_swerve;
   if (may_swerve && !straight.clear) {
     if (auto swerve = firstSwervingStop(
             path.state(t0), max_acc_mps2, max_vel_mps, [&](const Trajectory& stop) {
-              return isClearStop(*grid, stop, clearance_m, fence, also_clear);
+              if (isClearStop(*grid, stop, clearance_m, fence, also_clear)) return true;
+              CandidateStop c = examineStop(*grid, stop, clearance_m, fence, also_clear);
+              if (c.inside && (!safest_swerve || saferStop(c.seen, safest_swerve->seen, touch_m)))
+                safest_swerve = std::move(c);
+              return false;
             }))
       return *swerve;
   }
@@ -443,7 +450,11 @@ Trajectory chooseStoppingTrajectory(const VoxelGrid* grid, const Trajectory& pat
     const CandidateStop& inside = along.inside ? along : straight;
     if (inside.seen.clearance_m >= touch_m) return inside.trajectory;
   }
-  return saferStop(straight.seen, along.seen, touch_m) ? straight.trajectory : along.trajectory;
+  const CandidateStop& braking = saferStop(straight.seen, along.seen, touch_m) ? straight : along;
+  if (braking.seen.clearance_m < touch_m && safest_swerve &&
+      safest_swerve->seen.clearance_m >= touch_m)
+    return safest_swerve->trajectory;
+  return braking.trajectory;
 }
 
 }  // namespace mmh

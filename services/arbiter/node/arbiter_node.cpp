@@ -178,6 +178,7 @@ void ArbiterNode::flush() {
   ctx_.setCounter("slowdowns", n.slowdowns);
   ctx_.setCounter("failed_round_slowdowns", n.failed_round_slowdowns);
   ctx_.setCounter("swerving_stops", n.swerving_stops);
+  ctx_.setCounter("last_resort_stops", n.last_resort_stops);
   ctx_.setCounter("backup_stops", n.backup_stops);
   ctx_.setCounter("retraces", n.retraces);
   // Latencies as gauges (ms), so that mmh-top and a log show what the budget sees.

@@ -799,13 +799,23 @@ void Arbiter::swerveIfStopMeetsObstacle(int64_t now, const std::string& notes, T
   const int64_t start = now + static_cast<int64_t>(budget_.replan_lead_s * 1e6);
   const double t0 = (start - committed_.start_utime) * kUs;
   if (t0 >= committed_.trajectory.duration()) return;
-  // Braking along the stop under way, or straight, meets the obstacle as the stop does: only a
-  // stop clear of it is worth committing; else the modes go on trying.
+  // Braking along the stop under way, or straight, meets the obstacle as the stop does: a stop
+  // clear of it is worth committing, and so is one that keeps the airframe off the occupied cells
+  // that the stop under way would touch; else the modes go on trying.
   const Trajectory stop = stopAlongCommitted(t0);
   const Geofence fence = geofence();
-  if (!isClearStop(*grid_, stop, params_.check_inflation_m, &fence, noHiddenFaceBeside())) return;
+  std::string how = "swerving round it";
+  if (!isClearStop(*grid_, stop, params_.check_inflation_m, &fence, noHiddenFaceBeside())) {
+    const double touch_m = stopTouchDistance();
+    const Trajectory rest = committed_.trajectory.tail(t0);
+    if (minOccupiedDistance(*grid_, rest, touch_m) >= touch_m ||
+        minOccupiedDistance(*grid_, stop, touch_m) < touch_m)
+      return;
+    ++counters_.last_resort_stops;
+    how = "no clear stop, taking the one that keeps the airframe off it";
+  }
   ++counters_.swerving_stops;
-  commitStop(now, "the stop under way meets a newly mapped obstacle: swerving round it; " + notes,
+  commitStop(now, "the stop under way meets a newly mapped obstacle: " + how + "; " + notes,
              trigger, &stop);
 }
 

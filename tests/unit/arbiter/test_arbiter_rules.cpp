@@ -477,11 +477,17 @@ TEST_F(ArbiterRules, AStopAfterAFailedRoundAnswersTheDangerThatRoundWasFor) {
 }
 
 TEST_F(ArbiterRules, AnObstacleMappedOnABrakingStopIsAnsweredOnThatMap) {
-  // A pillar beside the stop's way, then a wall across it: none of the stops that swerve is clear
-  // of the wall.
-  for (const bool wall : {false, true}) {
-    SCOPED_TRACE(wall ? "wall" : "pillar");
+  // A pillar beside the stop's way; a wall across it: none of the stops that swerve is clear of
+  // the wall; a pillar on the stop's way while the arbiter asks a clearance that no stop keeps
+  // from it (the map's inflation unchanged): only a stop that keeps the airframe off it helps.
+  enum class Blocker { kPillarBeside, kWallAcross, kPillarOnTheWay };
+  for (const Blocker blocker :
+       {Blocker::kPillarBeside, Blocker::kWallAcross, Blocker::kPillarOnTheWay}) {
+    SCOPED_TRACE(static_cast<int>(blocker));
+    const bool wall = blocker == Blocker::kWallAcross;
+    const bool no_clear_stop = blocker == Blocker::kPillarOnTheWay;
     clearGrid();
+    params_.check_inflation_m = no_clear_stop ? 1.2 : ArbiterParams{}.check_inflation_m;
     auto a = started(Policy::kMmh);
     KinematicState before;
     const double t1 = cruiseIntoMappedPillar(*a, 2.5, &before);
@@ -503,6 +509,12 @@ TEST_F(ArbiterRules, AnObstacleMappedOnABrakingStopIsAnsweredOnThatMap) {
     const Vector3d ahead = braking.position(0.6 * braking.duration());
     if (wall) {
       for (double y = -4.0; y <= 4.0; y += 0.1) putPillar(ahead.x(), y, 0.1);
+    } else if (no_clear_stop) {
+      // Alone on the map (the first pillar, which every stop passes near, gone), where the stop
+      // under way ends: far enough ahead to swerve from.
+      for (int64_t i = 0; i < grid_.numCells(); ++i) grid_.setLinear(i, mmh::Occupancy::kFree);
+      const Vector3d end = braking.position(braking.duration());
+      putPillar(end.x(), end.y(), 0.071);
     } else {
       putPillar(ahead.x(), ahead.y() + 0.3, 0.2);
     }
@@ -528,9 +540,18 @@ TEST_F(ArbiterRules, AnObstacleMappedOnABrakingStopIsAnsweredOnThatMap) {
     ASSERT_TRUE(swerve.has_value());
     EXPECT_EQ(swerve->mode, Mode::kStop);
     EXPECT_EQ(a->counters().swerving_stops, 1);
+    EXPECT_EQ(a->counters().last_resort_stops, no_clear_stop ? 1 : 0);
     const Trajectory& st = swerve->trajectory;
-    EXPECT_FALSE(mmh::firstCollisionTime(grid_, st, 0.0, st.duration()).has_value());
-    EXPECT_TRUE(mmh::isClearStop(grid_, st, params_.check_inflation_m));
+    EXPECT_EQ(mmh::isClearStop(grid_, st, params_.check_inflation_m), !no_clear_stop);
+    if (!no_clear_stop) {
+      EXPECT_FALSE(mmh::firstCollisionTime(grid_, st, 0.0, st.duration()).has_value());
+    }
+    const double touch_m = params_.vehicle_radius_m + 0.5 * grid_.resolution();
+    EXPECT_GE(mmh::minOccupiedDistance(grid_, st, 1.0), touch_m);
+    if (no_clear_stop) {
+      const double t0 = (swerve->start_utime - stop->start_utime) * 1e-6;
+      EXPECT_LT(mmh::minOccupiedDistance(grid_, braking.tail(t0), 1.0), touch_m);
+    }
     const KinematicState from = braking.state((swerve->start_utime - stop->start_utime) * 1e-6);
     EXPECT_LT((st.position(0.0) - from.position).norm(), 1e-6);
     EXPECT_LT((st.velocity(0.0) - from.velocity).norm(), 1e-6);
@@ -539,7 +560,9 @@ TEST_F(ArbiterRules, AnObstacleMappedOnABrakingStopIsAnsweredOnThatMap) {
     const auto decisions = a->takeDecisions();
     ASSERT_FALSE(decisions.empty());
     EXPECT_EQ(decisions.back().outcome, Outcome::kStopping);
-    EXPECT_NE(decisions.back().detail.find("swerving"), std::string::npos);
+    EXPECT_NE(decisions.back().detail.find(no_clear_stop ? "keeps the airframe off" : "swerving"),
+              std::string::npos)
+        << decisions.back().detail;
     EXPECT_EQ(decisions.back().threat_seen_utime, now);  // the danger's answer, on its own map
   }
 }

@@ -361,6 +361,33 @@ TEST(StoppingTrajectory, SwervesWhenNoStopThatBrakesIsClear) {
             1e-9);
 }
 
+// A pillar stands on the straight path within braking distance and the clearance asked is wider
+// than any stop can keep from it: no stop is clear. The stops that brake would run into the
+// pillar, so the chosen one swerves and keeps the airframe off it, within the limits; asked not
+// to swerve, it brakes into the pillar.
+TEST(StoppingTrajectory, TakesASwerveThatKeepsTheAirframeOffWhenNoStopIsClear) {
+  const mmh::Trajectory path = steadyPath(3.0, 0.0);  // along x at 3 m/s from (0, 0, 1.2)
+  const mmh::Trajectory straight = mmh::makeStoppingTrajectory(path, 0.5, 2.0, 3.0);
+  const double stop_end_x = straight.position(straight.duration()).x();
+  const mmh::VoxelGrid pillar = gridWithPillar(stop_end_x - 0.3, 0.0, 0.2);
+  const double unreachable_clearance_m = 1.5;
+  for (const mmh::Trajectory& swerve : mmh::makeSwervingStops(path.state(0.5), 2.0, 3.0)) {
+    ASSERT_FALSE(mmh::isClearStop(pillar, swerve, unreachable_clearance_m));
+  }
+
+  const mmh::Trajectory braking = mmh::chooseStoppingTrajectory(
+      &pillar, path, 0.5, 2.0, 3.0, unreachable_clearance_m, kTouch, false);
+  EXPECT_LT(mmh::minOccupiedDistance(pillar, braking, 1.0), kTouch);
+
+  const mmh::Trajectory chosen =
+      mmh::chooseStoppingTrajectory(&pillar, path, 0.5, 2.0, 3.0, unreachable_clearance_m, kTouch);
+  EXPECT_FALSE(mmh::isClearStop(pillar, chosen, unreachable_clearance_m));
+  EXPECT_GE(mmh::minOccupiedDistance(pillar, chosen, 1.0), kTouch);
+  EXPECT_LT((chosen.state(0.0).velocity - path.velocity(0.5)).norm(), 1e-9);
+  EXPECT_LT(chosen.velocity(chosen.duration()).norm(), 1e-9);
+  EXPECT_LE(chosen.maxAcceleration(), 2.0 * (1.0 + 1e-6));
+}
+
 // A stop climbing at 45 degrees from 1.1 m to rest above 2.7 m: clear of every obstacle, but
 // through the ceiling of a 2.7 m geofence, so not clear when that fence is given.
 TEST(StoppingTrajectory, AStopThroughTheGeofenceIsNotClear) {

@@ -83,7 +83,9 @@ bool isClearStop(const VoxelGrid& grid, const Trajectory& stop, double clearance
 // that an avoidance under way is kept, if that stays clear (isClearStop); but the straight stop
 // from the same state if that is as clear and the one along the path runs much farther (a bend
 // flown near a_max leaves little to brake with). When neither is clear, the first clear stop that
-// swerves (firstSwervingStop), if may_swerve; else the safer (saferStop) of the two that brake.
+// swerves (firstSwervingStop), if may_swerve; else the safer (saferStop) of the two that brake,
+// unless that one brings the airframe within touch_m of an occupied cell and a swerve inside the
+// fence does not: then the safest of those swerves (saferStop), though it is not clear.
 // Braking along a path that bends into the obstacle it is stopped for can reach it; the straight
 // stop can run into unknown space that the path never crossed; a newly mapped obstacle may stand on
 // both. Given a fence, a stop that leaves it is not clear, and of two braking stops that are not,

@@ -96,9 +96,10 @@ struct ArbiterCounters {
   int back_offs = 0;                 // rounds that backed off to free space while stuck
   int slowdowns = 0;  // committed trajectories slowed to the latency budget's speed limit
   int failed_round_slowdowns = 0;  // ... slowed because every mode failed with danger ahead
-  int swerving_stops = 0;  // stops under way replaced by one that swerves round a new obstacle
-  int backup_stops = 0;    // failed rounds answered by flying on with a verified backup stop
-  int retraces = 0;        // back-offs flown along the way the vehicle came, when no mode answered
+  int swerving_stops = 0;     // stops under way replaced by one that swerves round a new obstacle
+  int last_resort_stops = 0;  // ... by one not clear, but off the cells the first would touch
+  int backup_stops = 0;       // failed rounds answered by flying on with a verified backup stop
+  int retraces = 0;  // back-offs flown along the way the vehicle came, when no mode answered
   int degraded_periods = 0;  // times the latency budget became degraded
   int moved_goals = 0;       // goals moved out of an obstacle's margin
   int kept_trajectories =
@@ -231,7 +232,9 @@ class Arbiter {
   void commitStop(int64_t now, const std::string& why, Trigger trigger,
                   const Trajectory* stop = nullptr);
   // The stop under way meets a newly mapped obstacle and every mode failed: commit a stop from
-  // the replan lead that is clear of it (one that swerves, chooseStoppingTrajectory), if any.
+  // the replan lead that is clear of it (one that swerves, chooseStoppingTrajectory), if any; or,
+  // when the stop under way would bring the airframe into an occupied cell, the chosen one if it
+  // does not.
   void swerveIfStopMeetsObstacle(int64_t now, const std::string& notes, Trigger trigger);
   void onStaleOdometry(int64_t now);
   // After a failed round, and while recovering: commits the stop for the danger ahead once it
