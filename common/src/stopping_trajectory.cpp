@@ -432,16 +432,14 @@ Trajectory chooseStoppingTrajectory(const VoxelGrid* grid, const Trajectory& pat
   if (along.clear) return straight.clear ? straight.trajectory : along.trajectory;
   // Braking along is refused by the caller's condition alone: the clear straight stop.
   if (straight.clear && !along.meets_condition) return straight.trajectory;
-  // The safest of the swerves that are not clear, inside the fence, kept in case both braking
-  // stops would bring the airframe into an occupied cell.
-  std::optional<CandidateStop> safest_swerve;
+  // The swerves that are not clear, kept in case both braking stops would bring the airframe into
+  // an occupied cell (assessed only then: a clear swerve is the usual answer).
+  std::vector<Trajectory> unclear_swerves;
   if (may_swerve && !straight.clear) {
     if (auto swerve = firstSwervingStop(
             path.state(t0), max_acc_mps2, max_vel_mps, [&](const Trajectory& stop) {
               if (isClearStop(*grid, stop, clearance_m, fence, also_clear)) return true;
-              CandidateStop c = examineStop(*grid, stop, clearance_m, fence, also_clear);
-              if (c.inside && (!safest_swerve || saferStop(c.seen, safest_swerve->seen, touch_m)))
-                safest_swerve = std::move(c);
+              unclear_swerves.push_back(stop);
               return false;
             }))
       return *swerve;
@@ -451,9 +449,14 @@ Trajectory chooseStoppingTrajectory(const VoxelGrid* grid, const Trajectory& pat
     if (inside.seen.clearance_m >= touch_m) return inside.trajectory;
   }
   const CandidateStop& braking = saferStop(straight.seen, along.seen, touch_m) ? straight : along;
-  if (braking.seen.clearance_m < touch_m && safest_swerve &&
-      safest_swerve->seen.clearance_m >= touch_m)
-    return safest_swerve->trajectory;
+  if (braking.seen.clearance_m >= touch_m) return braking.trajectory;
+  std::optional<CandidateStop> safest_swerve;
+  for (Trajectory& stop : unclear_swerves) {
+    CandidateStop c = examineStop(*grid, std::move(stop), clearance_m, fence, also_clear);
+    if (c.inside && (!safest_swerve || saferStop(c.seen, safest_swerve->seen, touch_m)))
+      safest_swerve = std::move(c);
+  }
+  if (safest_swerve && safest_swerve->seen.clearance_m >= touch_m) return safest_swerve->trajectory;
   return braking.trajectory;
 }
 
