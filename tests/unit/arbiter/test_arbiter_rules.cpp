@@ -564,6 +564,19 @@ TEST_F(ArbiterRules, AnObstacleMappedOnABrakingStopIsAnsweredOnThatMap) {
               std::string::npos)
         << decisions.back().detail;
     EXPECT_EQ(decisions.back().threat_seen_utime, now);  // the danger's answer, on its own map
+    if (!no_clear_stop) continue;
+    // Under way, it is not replaced again on the next maps, where it still comes within the
+    // margin: the modes go on trying (and fail).
+    int failed_rounds = 0;
+    for (double tf = t2 + 0.01; tf < t2 + 0.5; tf += 0.01) {
+      for (auto& r : fly(*a, tf, tf)) {
+        a->onAnswer(failedAnswer(r), at(tf + 0.001));
+        ++failed_rounds;
+      }
+      EXPECT_FALSE(a->takeCommit().has_value());
+    }
+    EXPECT_GT(failed_rounds, 0);
+    EXPECT_EQ(a->counters().last_resort_stops, 1);
   }
 }
 
