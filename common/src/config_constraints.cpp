@@ -130,6 +130,16 @@ std::vector<ConfigConstraint> buildConstraints() {
       atLeast("som.start_escape_clearance_m", "arbiter.check_inflation_m", 0.02, escape_why));
   c.push_back(
       atLeast("eam.start_escape_clearance_m", "arbiter.check_inflation_m", 0.02, escape_why));
+  c.push_back({{"eam.fine_knot_span_s", "eam.knot_span_s"},
+               "eam.fine_knot_span_s = 0 or < eam.knot_span_s",
+               "EAM's second plan uses a finer knot span than its first",
+               [](const Config& config) -> std::string {
+                 const double fine = config.getDouble("eam.fine_knot_span_s");
+                 const double span = config.getDouble("eam.knot_span_s");
+                 if (fine == 0.0 || fine < span) return "";
+                 return quoted("eam.fine_knot_span_s", fine) + " is not below " +
+                        quoted("eam.knot_span_s", span);
+               }});
   c.push_back(atLeast("sim.lidar.vmax_deg", "sim.lidar.vmin_deg", 0.0,
                       "the LiDAR's elevation interval must not be empty"));
   c.push_back(atLeast("mapping.occupancy_threshold", "mapping.clamp_min", 0.0,

@@ -243,6 +243,9 @@ std::vector<KeySpec> buildKeys() {
                     "Publish the A* path and corridor of each answer on PLAN_DEBUG (viewer)")),
       // eam
       real("eam.knot_span_s", 0.02, 2.0, "0.2", "Initial knot span of the uniform cubic B-spline"),
+      optional(real("eam.fine_knot_span_s", 0.0, 2.0, "0.0",
+                    "A plan that ends in collision or fails verification is made once more with "
+                    "this finer knot span (0: off)")),
       real("eam.lambda_smooth_open", 1e-9, 1e9, "1.0", "lambda1 (smoothness), open space"),
       real("eam.lambda_smooth_narrow", 1e-9, 1e9, "0.2", "lambda1 (smoothness), narrow space"),
       real("eam.lambda_collision_open", 1e-9, 1e12, "200000.0", "lambda2 (collision), open space"),

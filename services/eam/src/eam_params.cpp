@@ -19,6 +19,7 @@ EamParams loadEamParams(const Config& config) {
   p.narrow_probe_dist_m = config.getDouble("awareness.narrow_probe_dist_m");
 
   p.knot_span_s = config.getDouble("eam.knot_span_s");
+  p.fine_knot_span_s = config.getDouble("eam.fine_knot_span_s");
   p.lambda_smooth_open = config.getDouble("eam.lambda_smooth_open");
   p.lambda_smooth_narrow = config.getDouble("eam.lambda_smooth_narrow");
   p.lambda_collision_open = config.getDouble("eam.lambda_collision_open");

@@ -59,6 +59,22 @@ PlanResult fail(PlanResult r, PlanStatus reason, std::string detail) {
   return r;
 }
 
+// The answer's statistics with the effort of another plan of the same request added (its
+// rounds, evaluations, searches and times); the answer's own shape (pairs, segments, maxima).
+PlanStats withEffortOf(PlanStats answer, const PlanStats& other) {
+  answer.rounds += other.rounds;
+  answer.refines += other.refines;
+  answer.restarts += other.restarts;
+  answer.evaluations += other.evaluations;
+  answer.astar_calls += other.astar_calls;
+  answer.astar_expansions += other.astar_expansions;
+  answer.check_us += other.check_us;
+  answer.astar_us += other.astar_us;
+  answer.optimize_us += other.optimize_us;
+  answer.verify_us += other.verify_us;
+  return answer;
+}
+
 // Ratio by which the knot span must grow so that the maxima fall within the limits.
 double limitRatio(const UniformBspline& spline, const EamParams& p) {
   double vmax = 0.0, amax = 0.0;
@@ -542,6 +558,20 @@ std::optional<Planner::RoundsOutcome> Planner::reboundRound(
 
 PlanResult Planner::plan(const VoxelGrid& grid, const PlanRequest& req) {
   params_.max_vel_mps = speedLimitFor(req.max_speed_mps, vehicle_max_vel_mps_);
+  PlanResult coarse = planWithKnotSpan(grid, req, params_.knot_span_s);
+  const double fine_span_s = params_.fine_knot_span_s;
+  const bool may_retry =
+      coarse.reason == PlanStatus::kOptimizer || coarse.reason == PlanStatus::kVerify;
+  if (coarse.ok || !may_retry || !(fine_span_s > 0.0) || fine_span_s >= params_.knot_span_s)
+    return coarse;
+  PlanResult fine = planWithKnotSpan(grid, req, fine_span_s);
+  PlanResult& answer = fine.ok ? fine : coarse;
+  answer.stats = withEffortOf(answer.stats, fine.ok ? coarse.stats : fine.stats);
+  return answer;
+}
+
+PlanResult Planner::planWithKnotSpan(const VoxelGrid& grid, const PlanRequest& req,
+                                     double knot_span_s) {
   PlanResult r;
   const EamParams& P = params_;
   // --- input checks -----------------------------------------------------------------------
@@ -569,7 +599,7 @@ PlanResult Planner::plan(const VoxelGrid& grid, const PlanRequest& req) {
   const Trajectory guess =
       req.reference.empty() ? straightQuintic(req.start, req.target, P.max_vel_mps, P.max_acc_mps2)
                             : req.reference;
-  UniformBspline initial = sampleToBspline(guess, req.start, req.target, P.knot_span_s);
+  UniformBspline initial = sampleToBspline(guess, req.start, req.target, knot_span_s);
   const double escape_min_distance =
       escapeMinDistance(grid, req.start.position, P.start_escape_clearance_m);
   if (req.reference.empty()) {
@@ -594,8 +624,8 @@ PlanResult Planner::plan(const VoxelGrid& grid, const PlanRequest& req) {
       r.stats.astar_us += gs.us;
       if (path.ok() &&
           pathLength(path.path) > kPathGuessRatio * (req.target - req.start.position).norm()) {
-        initial = sampleAlongPath(shortenPath(grid, path.path), req.start, req.target,
-                                  P.knot_span_s, P.max_vel_mps, P.max_acc_mps2);
+        initial = sampleAlongPath(shortenPath(grid, path.path), req.start, req.target, knot_span_s,
+                                  P.max_vel_mps, P.max_acc_mps2);
         if (trace_)
           trace_("guess along the A* path: " + std::to_string(initial.numSegments()) + " segments");
       }

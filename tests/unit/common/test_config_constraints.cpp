@@ -51,6 +51,13 @@ TEST(ConfigConstraints, AnswerDeadlineBeforeTheReplanLead) {
       mmh::constraintViolations(config_test::defaultWith("arbiter.replan_lead_s", "0.0")).empty());
 }
 
+TEST(ConfigConstraints, EamsSecondPlanHasTheFinerKnotSpan) {
+  expectNames(violationWith("eam.fine_knot_span_s", "0.2"), "eam.fine_knot_span_s",
+              "eam.knot_span_s");
+  EXPECT_TRUE(
+      mmh::constraintViolations(config_test::defaultWith("eam.fine_knot_span_s", "0.1")).empty());
+}
+
 TEST(ConfigConstraints, GeofenceIsANonEmptyBox) {
   expectNames(violationWith("geofence.max_m", "[30, 30, 0.2]"), "geofence.max_m", "geofence.min_m");
 }

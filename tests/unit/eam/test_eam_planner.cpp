@@ -238,6 +238,45 @@ TEST(EamPlanner, DetourThroughAGapAtSpeedIsRetimedOncePerRound) {
   EXPECT_LT(r.trajectory.duration(), 2.0 * r.stats.initial_duration_s);
 }
 
+TEST(EamPlanner, ASwerveTooSharpForTheKnotSpanIsPlannedAgainWithTheFinerSpan) {
+  // At 2.8 m/s, a pillar 2 m ahead beside the straight line and another behind it on the other
+  // side: the control points 0.2 s apart cannot bend round the first within a_max, those 0.1 s
+  // apart can.
+  mmh::VoxelGrid g = eam_test::freeGrid();
+  eam_test::addPillar(g, 2.0, 0.2, 0.2);
+  eam_test::addPillar(g, 3.2, -0.8, 0.2);
+  PlanRequest req;
+  req.start.position = Vector3d(0.0, 0.0, 1.2);
+  req.start.velocity = Vector3d(2.8, 0.0, 0.0);
+  req.target = Vector3d(10.0, 0.0, 1.2);
+  auto p = params();
+  EXPECT_EQ(p.fine_knot_span_s, 0.0);  // off by default
+  auto coarse_only = p;
+  p.fine_knot_span_s = 0.1;
+  const PlanResult coarse = mmh::eam::Planner(coarse_only).plan(g, req);
+  ASSERT_FALSE(coarse.ok);
+  EXPECT_EQ(coarse.reason, PlanStatus::kVerify) << coarse.detail;
+
+  const PlanResult r = mmh::eam::Planner(p).plan(g, req);
+  expectValid(g, req, r, p);
+  EXPECT_GT(r.stats.segments, coarse.stats.segments);  // the finer spline answered
+  // Its effort includes the coarse plan's.
+  EXPECT_GT(r.stats.evaluations, coarse.stats.evaluations);
+  EXPECT_GE(r.stats.rounds, coarse.stats.rounds);
+
+  // A plan that the coarse span answers is the same with the finer span on or off.
+  mmh::VoxelGrid one = eam_test::freeGrid();
+  eam_test::addPillar(one, 5.0, 0.05, 0.5);
+  const PlanRequest easy = request(Vector3d(0, 0, 1.2), Vector3d(10, 0, 1.2), 7.0);
+  const PlanResult with = mmh::eam::Planner(p).plan(one, easy);
+  const PlanResult without = mmh::eam::Planner(coarse_only).plan(one, easy);
+  ASSERT_TRUE(with.ok && without.ok);
+  ASSERT_DOUBLE_EQ(with.trajectory.duration(), without.trajectory.duration());
+  for (double t = 0.0; t <= with.trajectory.duration(); t += 0.1) {
+    EXPECT_EQ(with.trajectory.position(t), without.trajectory.position(t));
+  }
+}
+
 TEST(EamPlanner, StartInTheInflatedMarginMayLeaveIt) {
   // A newly mapped pillar 0.2 m from the vehicle: the start is inside the 0.3 m inflation (not
   // in the obstacle). The answer leaves the margin within start_escape_radius_m and never

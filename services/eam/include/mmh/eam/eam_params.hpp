@@ -28,6 +28,10 @@ struct EamParams {
   // Uniform knot span of the initial B-spline (s); the actual span divides the initial duration
   // into whole segments and grows when time is re-allocated.
   double knot_span_s = 0.2;
+  // When the rounds at knot_span_s end in collision (or the answer fails verification), the plan
+  // is made once more with this finer span, whose control points can bend round an obstacle more
+  // sharply (0: no second plan, the default; docs/modes/eam.md).
+  double fine_knot_span_s = 0.0;
   // lambda1 / lambda2 for open space (N = 0) and narrow space (N = 1), lambda3 for both.
   double lambda_smooth_open = 1.0;
   double lambda_smooth_narrow = 0.2;

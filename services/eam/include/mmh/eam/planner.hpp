@@ -74,6 +74,8 @@ class Planner {
 
  private:
   struct Attempt;
+  // One plan with the initial B-spline's knot span knot_span_s.
+  PlanResult planWithKnotSpan(const VoxelGrid& grid, const PlanRequest& req, double knot_span_s);
   enum class RoundsOutcome { kCollisionFree, kStillColliding, kNoPath, kOptimizerError };
   // Collision rounds and time re-allocations on attempt.spline until it is collision-free and
   // within the limits, or the rounds run out.
