@@ -1,6 +1,7 @@
 // mmh-replan: gives every planning request of one mode in recorded flights to this build's
 // planner, with the map the mode had then, and compares the answers with the recorded ones.
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 
 #include "config_overrides.hpp"
@@ -36,12 +37,24 @@ int main(int argc, char** argv) {
                    "docs/configuration.md, also one the file leaves out)");
   parser.addString("--prefix", &options.prefix, "channel prefix of the vehicle (default: none)");
   parser.addFlag("--list", &list, "one line per request that failed then or fails now");
+  std::string trace_id;
+  parser.addString("--trace", &trace_id,
+                   "request id: print EAM's round-by-round trace of that request (one log)");
   parser.addPositional("LOG", &logs, "LCM logs of flights");
   int code = 0;
   if (!parser.parse(argc, argv, &code)) return code;
   if (logs.empty()) {
     std::cerr << parser.usage();
     return 2;
+  }
+  if (!trace_id.empty()) {
+    char* end = nullptr;
+    options.trace_request_id = std::strtoll(trace_id.c_str(), &end, 10);
+    if (end == trace_id.c_str() || *end != '\0' || options.mode != "eam") {
+      std::cerr << "mmh-replan: --trace takes a request id and works with --mode eam\n";
+      return 2;
+    }
+    options.trace = &std::cout;
   }
   try {
     options.config = mmh::loadConfigWithOverrides(node, sets);

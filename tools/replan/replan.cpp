@@ -39,11 +39,19 @@ struct ModePlanner {
   std::function<void(const VoxelGrid&)> prepare;
 };
 
-ModePlanner makePlanner(const std::string& mode, const Config& config) {
+ModePlanner makePlanner(const std::string& mode, const ReplanOptions& options) {
+  const Config& config = options.config;
   if (mode == "eam") {
     auto planner = std::make_shared<eam::Planner>(eam::loadEamParams(config));
     return {channels::kPlanRequestEam, plan_request_t::MODE_EAM,
-            [planner](const VoxelGrid& grid, const plan_request_t& msg) {
+            [planner, &options](const VoxelGrid& grid, const plan_request_t& msg) {
+              const bool traced =
+                  options.trace != nullptr && msg.request_id == options.trace_request_id;
+              planner->setTrace(traced ? std::function<void(const std::string&)>(
+                                             [&options](const std::string& line) {
+                                               *options.trace << "  " << line << "\n";
+                                             })
+                                       : nullptr);
               const eam::PlanResult r = planner->plan(grid, eamRequestOf(msg));
               return Answer{r.ok, r.ok ? "" : std::string(toString(r.reason)) + ": " + r.detail};
             },
@@ -72,7 +80,7 @@ bool decodeEvent(const lcm::LogEvent& e, Msg* msg) {
 }  // namespace
 
 std::vector<ReplanOutcome> replanLog(const std::string& log_path, const ReplanOptions& options) {
-  ModePlanner planner = makePlanner(options.mode, options.config);
+  ModePlanner planner = makePlanner(options.mode, options);
   lcm::LogFile log(log_path, "r");
   if (!log.good()) throw ReplanInputError("cannot read LCM log " + log_path);
   const std::string map_channel = options.prefix + channels::kLocalMap;

@@ -37,6 +37,9 @@ struct ReplanOptions {
   std::string mode = "eam";  // eam or som
   std::string prefix;        // channel prefix of the vehicle
   Config config;             // planner parameters and map.inflation_m
+  // EAM only: the planner's round-by-round trace of the request with this id goes to `trace`.
+  int64_t trace_request_id = -1;
+  std::ostream* trace = nullptr;
 };
 
 // All requests of the mode in the log, in order. Throws ReplanInputError when the log cannot be

@@ -2,7 +2,7 @@
 # mmh-replan: the EAM and SOM requests of a lock-step flight recorded by mmh-stack --log, planned
 # again by the same build and configuration, fail exactly where they failed in flight (nothing
 # fixed, nothing broken, one --list line per failure); another configuration is accepted with
-# --set; usage errors exit with 2 and say why.
+# --set; --trace prints the rounds of one EAM request; usage errors exit with 2 and say why.
 set -euo pipefail
 build=$1
 out=$(mktemp -d)
@@ -32,6 +32,14 @@ done
 before=$(sed -nE 's/^failed then ([0-9]+),.*/\1/p' "$out/eam.txt")
 [ "$before" -ge 1 ] || fail "the flight had no EAM failure to replan"
 
+# --trace shows the rounds of one failed EAM request, and only of that one.
+failed_id=$("$replan" --list "$log" | sed -nE 's/.* request ([0-9]+) .*/\1/p' | head -1)
+"$replan" --trace "$failed_id" "$log" > "$out/trace.txt" || fail "--trace exit $?"
+rounds=$(grep -cE '^  round [0-9]+: stretches [0-9]+, pairs added' "$out/trace.txt" || true)
+[ "$rounds" -ge 1 ] || fail "--trace $failed_id printed no round"
+"$replan" --trace 999999 "$log" > "$out/notrace.txt" || fail "--trace of no request exit $?"
+! grep -q '^  round ' "$out/notrace.txt" || fail "--trace of an unknown id printed rounds"
+
 # Another configuration of the mode: planned and summarised (whatever it changes).
 "$replan" --set eam.max_rebound_rounds=2 "$log" > "$out/rounds.txt" || fail "--set exit $?"
 grep -qE '^failed then [0-9]+, now [0-9]+' "$out/rounds.txt" || fail "--set gave no summary"
@@ -47,4 +55,6 @@ check_usage
 check_usage "$out/missing.lcm"
 check_usage --mode fpm "$log"
 check_usage --set eam.no_such_key=1 "$log"
+check_usage --trace x1 "$log"
+check_usage --mode som --trace 1 "$log"
 echo "mmh-replan: OK"
