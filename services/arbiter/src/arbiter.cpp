@@ -37,7 +37,8 @@ constexpr double kRetraceSpacingM = 0.1;
 Arbiter::Arbiter(const ArbiterParams& params)
     : params_(params),
       chain_(params.policy),
-      progress_(params.progress_min_step_m, kBackOffHistoryS, kBackOffSamplePeriodS),
+      progress_(params.progress_min_step_m, kBackOffHistoryS, kBackOffSamplePeriodS,
+                params.progress_new_ground_m),
       latency_(params.latency_window_s),
       budget_(mmh::arbiter::latencyBudget(0.0, 0.0, params)) {}
 

@@ -7,6 +7,14 @@ namespace mmh::arbiter {
 void ProgressMonitor::restart(int64_t now) {
   best_distance_m_ = std::numeric_limits<double>::infinity();
   last_progress_utime_ = now;
+  ground_.clear();
+}
+
+bool ProgressMonitor::onNewGround(const Eigen::Vector3d& position) const {
+  for (const Eigen::Vector3d& place : ground_) {
+    if ((place - position).norm() < new_ground_m_) return false;
+  }
+  return true;
 }
 
 void ProgressMonitor::observe(int64_t now, const Eigen::Vector3d& position,
@@ -15,6 +23,10 @@ void ProgressMonitor::observe(int64_t now, const Eigen::Vector3d& position,
       best_distance_m_ == std::numeric_limits<double>::infinity()) {
     best_distance_m_ = distance_to_goal_m;
     last_progress_utime_ = now;
+  }
+  if (new_ground_m_ > 0.0 && onNewGround(position)) {
+    last_progress_utime_ = now;
+    ground_.push_back(position);
   }
   if (history_.empty() || (now - history_.back().utime) * 1e-6 >= sample_period_s_) {
     history_.push_back({now, position});

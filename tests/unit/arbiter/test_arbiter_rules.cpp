@@ -127,6 +127,7 @@ class ArbiterRules : public ::testing::Test {
   // fails), flown to cruise speed with a pillar 2.5 m ahead, not yet on the map; *t1 the time.
   std::unique_ptr<Arbiter> stuckBeforeAPillar(double* t1) {
     params_.progress_min_step_m = 1000.0;
+    params_.progress_new_ground_m = 0.0;  // flying on is no progress either
     params_.stuck_after_s = 0.5;
     auto a = started(Policy::kMmh);
     KinematicState before;

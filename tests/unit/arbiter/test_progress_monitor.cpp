@@ -29,6 +29,49 @@ TEST(ProgressMonitor, ProgressIsANewBestDistanceByTheMinimumStep) {
   EXPECT_NEAR(m.secondsWithoutProgress(at(9)), 0.0, 1e-9);
 }
 
+TEST(ProgressMonitor, ADetourOntoNewGroundIsProgressFlyingBackOverItIsNot) {
+  // Goal at x = 10; a wall in the way: the vehicle flies sideways along it, then back.
+  const Vector3d goal(10, 0, 1);
+  ProgressMonitor detour(0.5, 20.0, 0.2, 1.5);
+  ProgressMonitor plain(0.5, 20.0, 0.2);
+  for (ProgressMonitor* m : {&detour, &plain}) m->restart(at(0));
+  double t = 0.0;
+  auto fly = [&](const Vector3d& p) {
+    for (ProgressMonitor* m : {&detour, &plain}) m->observe(at(t), p, (goal - p).norm());
+  };
+  for (double y = 0.0; y <= 6.0 + 1e-9; y += 0.5, t += 0.5) fly(Vector3d(0, y, 1));
+  // Sideways, ever farther from the goal: only the detour rule sees the new ground (at 1.5 m
+  // steps: the last at y = 6, t = 6 s).
+  EXPECT_NEAR(detour.secondsWithoutProgress(at(6.0)), 0.0, 1e-9);
+  EXPECT_NEAR(plain.secondsWithoutProgress(at(6.0)), 6.0, 1e-9);
+  // Back over the same places: no progress for either.
+  for (double y = 5.5; y >= 0.0 - 1e-9; y -= 0.5, t += 0.5) fly(Vector3d(0, y, 1));
+  EXPECT_NEAR(detour.secondsWithoutProgress(at(t)), t - 6.0, 1e-9);
+  // Hovering about one spot (within the step) is not new ground either.
+  for (int k = 0; k < 10; ++k, t += 0.5) fly(Vector3d(-0.6 * (k % 2), 0.6 * (k % 3), 1));
+  EXPECT_NEAR(detour.secondsWithoutProgress(at(t)), t - 6.0, 1e-9);
+  // Past the wall toward the goal: progress again.
+  fly(Vector3d(3, 0, 1));
+  EXPECT_NEAR(detour.secondsWithoutProgress(at(t)), 0.0, 1e-9);
+  // Back the way it came (a back-off) is not new ground, even after that progress.
+  const double progress_t = t;
+  for (double y = 0.0; y <= 3.0 + 1e-9; y += 0.5) {
+    t += 0.5;
+    fly(Vector3d(0, y, 1));
+  }
+  EXPECT_NEAR(detour.secondsWithoutProgress(at(t)), t - progress_t, 1e-9);
+  t += 0.5;
+  fly(Vector3d(3, 2, 1));  // 2 m from anywhere flown
+  EXPECT_NEAR(detour.secondsWithoutProgress(at(t)), 0.0, 1e-9);
+  // A new goal starts a new record of places.
+  detour.restart(at(t));
+  t += 1.0;
+  fly(Vector3d(3, 2, 1));
+  t += 1.0;
+  fly(Vector3d(0, 3, 1));
+  EXPECT_NEAR(detour.secondsWithoutProgress(at(t)), 0.0, 1e-9);
+}
+
 TEST(ProgressMonitor, BacksOffToTheNewestFlownPointFarEnoughAndClear) {
   mmh::VoxelGrid grid(0.1, Eigen::Vector3i(-50, -50, 0), Eigen::Vector3i(100, 100, 30));
   for (int64_t i = 0; i < grid.numCells(); ++i) grid.setLinear(i, mmh::Occupancy::kFree);
