@@ -377,7 +377,7 @@ std::vector<KeySpec> buildKeys() {
       real("arbiter.progress_min_step_m", 0.01, 10.0, "0.5",
            "Progress: this much nearer to the goal than ever before"),
       optional(real("arbiter.progress_new_ground_m", 0.0, 20.0, "1.0",
-                    "... or this far from every place flown since the last progress (0: off)")),
+                    "... or this far from every place flown since the goal was set (0: off)")),
       real("arbiter.stuck_after_s", 0.5, 600.0, "4.0",
            "No progress this long: stuck (retries throttled, one back-off)"),
       real("arbiter.stuck_retry_period_s", 0.0, 60.0, "1.0",
