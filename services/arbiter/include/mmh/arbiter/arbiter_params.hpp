@@ -115,11 +115,10 @@ struct ArbiterParams {
   bool backup_stop = true;
   double braking_speed_mps = 0.1;  // a committed stop faster than this still brakes
   // The stuck detector (progress_monitor.hpp, stuckResponse).
-  double progress_min_step_m = 0.5;  // progress: this much nearer to the goal than ever before
-  double progress_new_ground_m =
-      1.0;                            // ... or this far from all places flown for the goal (0: off)
-  double stuck_after_s = 4.0;         // no progress this long: stuck
-  double stuck_retry_period_s = 1.0;  // retries while stuck come at most this often
+  double progress_min_step_m = 0.5;     // progress: this much nearer to the goal than ever before
+  double progress_new_ground_m = 1.0;   // ... or this far from the places flown (0: off)
+  double stuck_after_s = 4.0;           // no progress this long: stuck
+  double stuck_retry_period_s = 1.0;    // retries while stuck come at most this often
   double backoff_min_distance_m = 1.0;  // a back-off target is at least this far away
   double retrace_speed_mps = 0.5;       // no mode answers a back-off: the way back flown this fast
   double backoff_clearance_m = 0.15;    // ... and this much clearer than inflation_m
