@@ -69,8 +69,9 @@ int main(int argc, char** argv) {
       if (list) {
         for (const mmh::ReplanOutcome& o : outcomes) {
           if (o.ok && o.logged_ok) continue;
-          std::printf("%s %7.2f s  request %lld  %.2f m/s  then: %s  now: %s\n", path.c_str(),
-                      o.t_s, static_cast<long long>(o.request_id), o.start_speed_mps,
+          std::printf("%s %7.2f s  request %lld  %.2f m/s  %.2f m/s^2  then: %s  now: %s\n",
+                      path.c_str(), o.t_s, static_cast<long long>(o.request_id), o.start_speed_mps,
+                      o.start_acceleration_mps2,
                       !o.logged_answer ? "no answer"
                       : o.logged_ok    ? "ok"
                                        : o.logged_detail.c_str(),

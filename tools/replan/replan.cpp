@@ -104,6 +104,7 @@ std::vector<ReplanOutcome> replanLog(const std::string& log_path, const ReplanOp
       o.t_s = 1e-6 * static_cast<double>(e->timestamp - t0);
       o.request_id = msg.request_id;
       o.start_speed_mps = toVec3(msg.start_velocity).norm();
+      o.start_acceleration_mps2 = toVec3(msg.start_acceleration).norm();
       if (map.hasMap()) {
         const auto started = std::chrono::steady_clock::now();
         const Answer a = planner.plan(map.grid(), msg);

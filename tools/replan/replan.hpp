@@ -25,6 +25,7 @@ struct ReplanOutcome {
   double t_s = 0.0;  // log time since the first event
   int64_t request_id = 0;
   double start_speed_mps = 0.0;
+  double start_acceleration_mps2 = 0.0;
   bool logged_answer = false;  // the log holds the mode's PLAN_RESULT for it
   bool logged_ok = false;
   std::string logged_detail;  // failure text of the logged answer

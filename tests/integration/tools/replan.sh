@@ -26,8 +26,11 @@ for mode in eam som; do
   read -r before now fixed broken <<< "$then_"
   [ "$before" = "$now" ] && [ "$fixed" = 0 ] && [ "$broken" = 0 ] ||
     fail "$mode: the same build planned differently: $line"
-  listed=$("$replan" --mode "$mode" --list "$log" | grep -c "^$log " || true)
+  "$replan" --mode "$mode" --list "$log" > "$out/$mode.list" || fail "$mode: --list exit $?"
+  listed=$(grep -c "^$log " "$out/$mode.list" || true)
   [ "$listed" = "$before" ] || fail "$mode: --list shows $listed requests, $before failed"
+  with_state=$(grep -cE "^$log .* [0-9.]+ m/s  [0-9.]+ m/s\^2  then: " "$out/$mode.list" || true)
+  [ "$with_state" = "$listed" ] || fail "$mode: --list lines without the start speed and acceleration"
 done
 before=$(sed -nE 's/^failed then ([0-9]+),.*/\1/p' "$out/eam.txt")
 [ "$before" -ge 1 ] || fail "the flight had no EAM failure to replan"
