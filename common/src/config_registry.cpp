@@ -317,6 +317,9 @@ std::vector<KeySpec> buildKeys() {
            "LOCAL_MAP older than this on arrival (p99) marks the arbiter degraded"),
       choice("arbiter.parallel_modes", {"none", "collision", "always"}, "none",
              "When SOM and EAM are asked together"),
+      optional(real("arbiter.score_jerk_weight_s", 0.0, 10.0, "0.0",
+                    "An answer's score: its time to the goal plus this many seconds per m^2/s^5 "
+                    "of its jerk energy (0: time only)")),
       real("arbiter.goal_tolerance_m", 0.05, 5.0, "0.3", "The goal is reached within this"),
       real("arbiter.fixed_replan_distance_m", 0.1, 50.0, "1.5",
            "ego / som / mmh-no-lazy: replan after this much progress"),

@@ -672,11 +672,12 @@ void Arbiter::decide(int64_t now, bool by_deadline) {
       d.outcome = Outcome::kKept;
       d.committed_mode = committed_.mode;
       d.trajectory_id = next_trajectory_id_ - 1;
-      char text[160];
+      char text[200];
       std::snprintf(text, sizeof text,
                     "%s's answer would reach the goal in %.1f s, the committed %s trajectory in "
-                    "%.1f s: kept, replanning in %.1f s",
+                    "%.1f s%s: kept, replanning in %.1f s",
                     toString(best->mode), best_score, toString(committed_.mode), committed_score,
+                    params_.score_jerk_weight_s > 0.0 ? " (scores with their jerk energy)" : "",
                     (*committed_.kept_replan_utime - round.start.start_utime) * kUs);
       d.detail = notes + text;
       pushDecision(d);

@@ -71,6 +71,7 @@ ArbiterParams loadArbiterParams(const Config& config) {
   p.goal_tolerance_m = config.getDouble("arbiter.goal_tolerance_m");
   p.fixed_replan_distance_m = config.getDouble("arbiter.fixed_replan_distance_m");
   p.parallel_modes = parseParallelModes(config.getString("arbiter.parallel_modes"));
+  p.score_jerk_weight_s = config.getDouble("arbiter.score_jerk_weight_s");
   p.stale_map_s = config.getDouble("arbiter.stale_map_s");
   p.stop_retry_period_s = config.getDouble("arbiter.stop_retry_period_s");
   p.emergency_horizon_s = config.getDouble("arbiter.emergency_horizon_s");

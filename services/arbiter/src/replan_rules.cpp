@@ -126,8 +126,10 @@ bool goalReached(double to_goal_m, bool has_committed, bool committed_ends_at_go
 
 double answerScore(const Trajectory& answer, const Eigen::Vector3d& goal,
                    const ArbiterParams& params) {
-  return answer.duration() +
-         (goal - answer.position(answer.duration())).norm() / params.max_vel_mps;
+  const double time_to_goal_s =
+      answer.duration() + (goal - answer.position(answer.duration())).norm() / params.max_vel_mps;
+  if (params.score_jerk_weight_s <= 0.0) return time_to_goal_s;
+  return time_to_goal_s + params.score_jerk_weight_s * answer.jerkEnergy();
 }
 
 bool keepsCommitted(Trigger trigger, double answer_score_s, double committed_score_s,

@@ -76,6 +76,8 @@ struct ArbiterParams {
   double hidden_face_m = 0.3;
   double hidden_face_reach_m = 0.5;  // ... within this much path (farther, the sensor sees them)
   ParallelModes parallel_modes = ParallelModes::kNone;
+  // answerScore: seconds added per m^2/s^5 of an answer's jerk energy (0: time to the goal only).
+  double score_jerk_weight_s = 0.0;
   double inflation_m = 0.3;              // the planners' map inflation (local target clearance)
   double vehicle_radius_m = 0.15;        // airframe: a stop that brings it into an occupied cell
                                          // is the last one to choose

@@ -116,8 +116,9 @@ bool collisionKeepsReference(Trigger trigger, bool end_clear, double start_s, do
 bool goalReached(double to_goal_m, bool has_committed, bool committed_ends_at_goal,
                  const ArbiterParams& params);
 
-// Estimated time to the goal of a verified answer (lower is better): the answer itself, then the
-// straight rest at full speed.
+// Score of a verified answer (lower is better): its estimated time to the goal (the answer
+// itself, then the straight rest at full speed) plus score_jerk_weight_s per m^2/s^5 of its jerk
+// energy, so that of two answers about as fast the smoother one wins.
 double answerScore(const Trajectory& answer, const Eigen::Vector3d& goal,
                    const ArbiterParams& params);
 
