@@ -254,6 +254,9 @@ std::vector<KeySpec> buildKeys() {
       real("eam.lambda_feasibility", 0.0, 1e12, "10.0", "lambda3 (speed / acceleration limits)"),
       real("eam.clearance_m", 0.0, 2.0, "0.1",
            "Asked beyond each anchor plane, on top of map.inflation_m"),
+      optional(real("eam.geofence_margin_m", 0.0, 1.0, "0.05",
+                    "The optimiser's walls stand this far inside the geofence (its penalty is "
+                    "soft)")),
       real("eam.window_margin_s", 0.0, 100.0, "2.5",
            "Optimise control points within this time of a collision"),
       flag("eam.guide_warm_start", "true", "Start from the A* guide path on colliding stretches"),

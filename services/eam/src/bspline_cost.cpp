@@ -5,6 +5,20 @@
 
 namespace mmh::eam {
 
+CostSettings costSettingsFor(const EamParams& p) {
+  CostSettings s;
+  s.max_vel_mps = p.max_vel_mps;
+  s.max_acc_mps2 = p.max_acc_mps2;
+  // Walls inside the fence, but never crossing: a fence thinner than twice the margin keeps its
+  // middle.
+  const Eigen::Vector3d margin =
+      Eigen::Vector3d::Constant(p.geofence_margin_m)
+          .cwiseMin(0.5 * (p.geofence_max - p.geofence_min).cwiseMax(0.0));
+  s.box_min = p.geofence_min + margin;
+  s.box_max = p.geofence_max - margin;
+  return s;
+}
+
 double collisionPenalty(double c, double clearance, double* derivative) {
   if (c <= 0.0) {
     *derivative = 0.0;

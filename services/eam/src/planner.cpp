@@ -82,15 +82,6 @@ double limitRatio(const UniformBspline& spline, const EamParams& p) {
   return std::max(vmax / p.max_vel_mps, std::sqrt(amax / p.max_acc_mps2));
 }
 
-CostSettings costSettings(const EamParams& p) {
-  CostSettings s;
-  s.max_vel_mps = p.max_vel_mps;
-  s.max_acc_mps2 = p.max_acc_mps2;
-  s.box_min = p.geofence_min;
-  s.box_max = p.geofence_max;
-  return s;
-}
-
 // Slower by `ratio`, without a kink at the start, up to old time tau_end (then back to the old
 // pace; infinite: the whole rest). A uniform stretch of the curve would also slow its start,
 // which the request fixes; re-solving only the first control points then leaves a jump in speed
@@ -340,7 +331,7 @@ Planner::RoundsOutcome Planner::runRounds(const VoxelGrid& grid, const PlanReque
                                           Attempt& at, PlanResult& r) {
   const EamParams& P = params_;
   const int last_free = at.spline.numControlPoints() - 4;
-  const CostSettings settings = costSettings(P);
+  const CostSettings settings = costSettingsFor(P);
   GuideStats guide_stats;
   RoundsOutcome outcome = RoundsOutcome::kStillColliding;
   for (;;) {
@@ -675,7 +666,7 @@ PlanResult Planner::planWithKnotSpan(const VoxelGrid& grid, const PlanRequest& r
               CostWeights{P.lambda_smooth_open, P.lambda_collision_open, P.lambda_feasibility};
         }
         // The objective of the answer itself (after any time re-allocation).
-        r.terms = BsplineCost(costSettings(P), r.weights, &at.pairs)
+        r.terms = BsplineCost(costSettingsFor(P), r.weights, &at.pairs)
                       .evaluate(at.spline.controlPoints(), at.spline.knotSpan(), nullptr);
         r.jerk_energy = cubicJerkEnergy(traj);
         r.trajectory = std::move(traj);

@@ -112,3 +112,34 @@ TEST(BsplineOptimizer, LowersTheCostAndKeepsTheFixedPoints) {
   const Eigen::Matrix3Xd& q = spline.controlPoints();
   for (int i : {0, 1, 2, 11, 12, 13}) EXPECT_EQ((q.col(i) - pb.q.col(i)).norm(), 0.0);
 }
+
+TEST(BsplineCost, GeofenceWallsStandTheMarginInsideTheFence) {
+  EamParams p;
+  p.geofence_min = Vector3d(-30, -30, 0.3);
+  p.geofence_max = Vector3d(30, 30, 2.7);
+  p.geofence_margin_m = 0.05;
+  const CostSettings s = costSettingsFor(p);
+  EXPECT_TRUE(s.box_min.isApprox(Vector3d(-29.95, -29.95, 0.35)));
+  EXPECT_TRUE(s.box_max.isApprox(Vector3d(29.95, 29.95, 2.65)));
+  EXPECT_EQ(s.max_vel_mps, p.max_vel_mps);
+  EXPECT_EQ(s.max_acc_mps2, p.max_acc_mps2);
+  // A control point pressed against the fence costs something now: the soft wall no longer lets
+  // the curve end a few millimetres outside the fence, which the verification refuses.
+  Eigen::Matrix3Xd q(3, 4);
+  for (int i = 0; i < 4; ++i) q.col(i) = Vector3d(0.3 * i, 0.0, 2.69);
+  const PairSet no_pairs(4);
+  const BsplineCost cost(s, CostWeights{0.0, 1.0, 0.0}, &no_pairs);
+  EXPECT_GT(cost.evaluate(q, 0.2, nullptr).collision, 0.0);
+  p.geofence_margin_m = 0.0;
+  EXPECT_EQ(BsplineCost(costSettingsFor(p), CostWeights{0.0, 1.0, 0.0}, &no_pairs)
+                .evaluate(q, 0.2, nullptr)
+                .collision,
+            0.0);
+  // A fence thinner than twice the margin keeps its middle, never inverted walls.
+  p.geofence_margin_m = 0.5;
+  p.geofence_min.z() = 1.0;
+  p.geofence_max.z() = 1.4;
+  const CostSettings thin = costSettingsFor(p);
+  EXPECT_DOUBLE_EQ(thin.box_min.z(), 1.2);
+  EXPECT_DOUBLE_EQ(thin.box_max.z(), 1.2);
+}

@@ -4,7 +4,7 @@
 //   Jc: for every {p, v} anchor pair of a control point Q, a penalty on d = (Q - p) . v, the
 //       signed distance past the obstacle surface along the repulsive direction, that is zero
 //       for d >= the pair's clearance, cubic just below it and quadratic (C2-continued) deeper;
-//       plus a cubic penalty on control points outside the geofence box.
+//       plus a cubic penalty on control points outside the geofence's walls (costSettingsFor).
 //   Jf: squared excess of |V_i|^2 over v_max^2 and |A_i|^2 over a_max^2 for the velocity and
 //       acceleration control points (the curve's velocity and acceleration lie in their convex
 //       hulls, so satisfied terms bound the curve).
@@ -34,6 +34,10 @@ struct CostSettings {
   Eigen::Vector3d box_min = Eigen::Vector3d::Constant(-1e9);
   Eigen::Vector3d box_max = Eigen::Vector3d::Constant(1e9);
 };
+
+// The settings of a plan: the vehicle's limits, and the geofence with its walls
+// geofence_margin_m inside it.
+CostSettings costSettingsFor(const EamParams& p);
 
 struct CostTerms {
   double smooth = 0.0;       // Js (m^2/s^5)

@@ -22,6 +22,9 @@ struct EamParams {
   double max_acc_mps2 = 2.0;
   Eigen::Vector3d geofence_min = Eigen::Vector3d(-30.0, -30.0, 0.3);
   Eigen::Vector3d geofence_max = Eigen::Vector3d(30.0, 30.0, 2.7);
+  // The optimiser's walls stand this far inside the geofence: its penalty is soft, and a curve
+  // pressed against a wall ends a few millimetres beyond it.
+  double geofence_margin_m = 0.05;
   // Narrow-space test on the A* path (awareness.narrow_probe_dist_m, shared with awareness).
   double narrow_probe_dist_m = 0.8;
 
