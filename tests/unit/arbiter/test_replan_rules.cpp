@@ -10,6 +10,17 @@ using namespace mmh::arbiter;
 
 namespace {
 
+// A rest-to-rest minimum-jerk move along x from (0, 0, 1) to (x_end, 0, 1).
+mmh::Trajectory restToRest(double x_end, double duration) {
+  mmh::MincoJerk m;
+  Eigen::Matrix3d head = Eigen::Matrix3d::Zero(), tail = Eigen::Matrix3d::Zero();
+  head.col(0) = Eigen::Vector3d(0, 0, 1);
+  tail.col(0) = Eigen::Vector3d(x_end, 0, 1);
+  m.setConditions(head, tail, 1);
+  m.setParameters(Eigen::Matrix3Xd(3, 0), Eigen::VectorXd::Constant(1, duration));
+  return m.trajectory();
+}
+
 ArbiterParams paramsFor(Policy policy) {
   ArbiterParams p;
   p.policy = policy;
@@ -288,34 +299,16 @@ TEST(ReplanRules, GoalIsReachedOnlyOnATrajectoryThatEndsThere) {
 
 TEST(ReplanRules, ScorePrefersTheEarlierArrival) {
   const ArbiterParams p = paramsFor(Policy::kMmh);
-  auto line = [](double x_end, double duration) {
-    mmh::MincoJerk m;
-    Eigen::Matrix3d head = Eigen::Matrix3d::Zero(), tail = Eigen::Matrix3d::Zero();
-    head.col(0) = Eigen::Vector3d(0, 0, 1);
-    tail.col(0) = Eigen::Vector3d(x_end, 0, 1);
-    m.setConditions(head, tail, 1);
-    m.setParameters(Eigen::Matrix3Xd(3, 0), Eigen::VectorXd::Constant(1, duration));
-    return m.trajectory();
-  };
   const Eigen::Vector3d goal(30, 0, 1);
   // 10 m in 6 s + 20 m at 3 m/s = 12.67 s, against 5 m in 3 s + 25 m at 3 m/s = 11.33 s.
-  EXPECT_NEAR(answerScore(line(10, 6), goal, p), 6.0 + 20.0 / 3.0, 1e-9);
-  EXPECT_LT(answerScore(line(5, 3), goal, p), answerScore(line(10, 6), goal, p));
+  EXPECT_NEAR(answerScore(restToRest(10, 6), goal, p), 6.0 + 20.0 / 3.0, 1e-9);
+  EXPECT_LT(answerScore(restToRest(5, 3), goal, p), answerScore(restToRest(10, 6), goal, p));
 }
 
 TEST(ReplanRules, ScoreWithJerkWeightPrefersTheSmootherOfTwoAboutAsFastAnswers) {
   ArbiterParams p = paramsFor(Policy::kMmh);
-  auto line = [](double x_end, double duration) {
-    mmh::MincoJerk m;
-    Eigen::Matrix3d head = Eigen::Matrix3d::Zero(), tail = Eigen::Matrix3d::Zero();
-    head.col(0) = Eigen::Vector3d(0, 0, 1);
-    tail.col(0) = Eigen::Vector3d(x_end, 0, 1);
-    m.setConditions(head, tail, 1);
-    m.setParameters(Eigen::Matrix3Xd(3, 0), Eigen::VectorXd::Constant(1, duration));
-    return m.trajectory();
-  };
   const Eigen::Vector3d goal(30, 0, 1);
-  const mmh::Trajectory hard = line(5, 2.5), smooth = line(5, 3.0);
+  const mmh::Trajectory hard = restToRest(5, 2.5), smooth = restToRest(5, 3.0);
   // Off (the default): the earlier arrival wins.
   ASSERT_EQ(p.score_jerk_weight_s, 0.0);
   EXPECT_LT(answerScore(hard, goal, p), answerScore(smooth, goal, p));
@@ -328,7 +321,7 @@ TEST(ReplanRules, ScoreWithJerkWeightPrefersTheSmootherOfTwoAboutAsFastAnswers) 
   EXPECT_NEAR(answerScore(smooth, goal, p), 3.0 + 25.0 / 3.0 + 0.01 * 720.0 * 25.0 / 243.0, 1e-6);
   EXPECT_LT(answerScore(smooth, goal, p), answerScore(hard, goal, p));
   // A much slower answer is not made up for by smoothness: 5 m in 6 s against 2.5 s.
-  EXPECT_LT(answerScore(hard, goal, p), answerScore(line(5, 6.0), goal, p));
+  EXPECT_LT(answerScore(hard, goal, p), answerScore(restToRest(5, 6.0), goal, p));
 }
 
 TEST(ReplanRules, EveryStopHasItsCondition) {
