@@ -16,6 +16,7 @@
 #include "mmh/common/msg_convert.hpp"
 #include "mmh/common/plan_status.hpp"
 #include "mmh/eam/planner.hpp"
+#include "mmh/fpm/planner.hpp"
 #include "mmh/local_map_t.hpp"
 #include "mmh/plan_request_t.hpp"
 #include "mmh/plan_result_t.hpp"
@@ -36,7 +37,8 @@ struct ModePlanner {
   std::string request_channel;
   int8_t wire_mode = 0;
   PlanFn plan;
-  std::function<void(const VoxelGrid&)> prepare;
+  std::function<void(const VoxelGrid&)> prepare;  // a new keyframe (none: nothing to prepare)
+  bool needs_map = true;                          // FPM plans without one
 };
 
 ModePlanner makePlanner(const std::string& mode, const ReplanOptions& options) {
@@ -68,7 +70,20 @@ ModePlanner makePlanner(const std::string& mode, const ReplanOptions& options) {
         },
         [planner](const VoxelGrid& grid) { planner->prepare(grid); }};
   }
-  throw ReplanInputError("unknown mode '" + mode + "' (eam or som)");
+  if (mode == "fpm") {
+    auto planner = std::make_shared<fpm::Planner>(fpm::loadParams(config));
+    return {channels::kPlanRequestFpm, plan_request_t::MODE_FPM,
+            [planner](const VoxelGrid&, const plan_request_t& msg) {
+              fpm::Request req;
+              req.start = startStateOf(msg);
+              req.target = toVec3(msg.target);
+              req.max_speed_mps = msg.max_speed_mps;
+              const fpm::Result r = planner->plan(req);
+              return Answer{r.ok, r.ok ? "" : std::string(toString(r.status)) + ": " + r.detail};
+            },
+            nullptr, false};
+  }
+  throw ReplanInputError("unknown mode '" + mode + "' (eam, som or fpm)");
 }
 
 template <class Msg>
@@ -95,7 +110,7 @@ std::vector<ReplanOutcome> replanLog(const std::string& log_path, const ReplanOp
     if (e->channel == map_channel) {
       local_map_t msg;
       if (decodeEvent(*e, &msg) && map.apply(msg) == LocalMapReceiver::Result::kApplied &&
-          map.lastWasKeyframe())
+          map.lastWasKeyframe() && planner.prepare)
         planner.prepare(map.grid());
     } else if (e->channel == request_channel) {
       plan_request_t msg;
@@ -105,7 +120,7 @@ std::vector<ReplanOutcome> replanLog(const std::string& log_path, const ReplanOp
       o.request_id = msg.request_id;
       o.start_speed_mps = toVec3(msg.start_velocity).norm();
       o.start_acceleration_mps2 = toVec3(msg.start_acceleration).norm();
-      if (map.hasMap()) {
+      if (map.hasMap() || !planner.needs_map) {
         const auto started = std::chrono::steady_clock::now();
         const Answer a = planner.plan(map.grid(), msg);
         o.compute_ms =

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# mmh-replan: the EAM and SOM requests of a lock-step flight recorded by mmh-stack --log, planned
+# mmh-replan: the EAM, SOM and FPM requests of lock-step flights recorded by mmh-stack --log, planned
 # again by the same build and configuration, fail exactly where they failed in flight (nothing
 # fixed, nothing broken, one --list line per failure); another configuration is accepted with
 # --set; --trace prints the rounds of one EAM request; usage errors exit with 2 and say why.
@@ -32,6 +32,17 @@ for mode in eam som; do
   with_state=$(grep -cE "^$log .* [0-9.]+ m/s  [0-9.]+ m/s\^2  then: " "$out/$mode.list" || true)
   [ "$with_state" = "$listed" ] || fail "$mode: --list lines without the start speed and acceleration"
 done
+# FPM needs no map: the FPM requests of a sparse forest's flight, planned again the same.
+fpm_log=$out/sparse.lcm
+"$build/bin/mmh-stack" --density 0.05 --seed 1100 --noise-seed 110001 --log-level error --json \
+  --log "$fpm_log" > "$out/sparse.json" || fail "sparse flight failed"
+"$replan" --mode fpm "$fpm_log" > "$out/fpm.txt" || fail "mmh-replan --mode fpm exit $?"
+cat "$out/fpm.txt"
+fpm_requests=$(sed -nE 's/^requests ([0-9]+) .*/\1/p' "$out/fpm.txt")
+[ "${fpm_requests:-0}" -ge 1 ] || fail "fpm: no FPM request found in the sparse flight"
+grep -qE '^failed then 0, now 0: 0 fixed, 0 broken' "$out/fpm.txt" ||
+  fail "fpm: the same build planned differently: $(grep '^failed then' "$out/fpm.txt")"
+
 before=$(sed -nE 's/^failed then ([0-9]+),.*/\1/p' "$out/eam.txt")
 [ "$before" -ge 1 ] || fail "the flight had no EAM failure to replan"
 
@@ -56,8 +67,9 @@ check_usage() {
 }
 check_usage
 check_usage "$out/missing.lcm"
-check_usage --mode fpm "$log"
+check_usage --mode xyz "$log"
 check_usage --set eam.no_such_key=1 "$log"
 check_usage --trace x1 "$log"
 check_usage --mode som --trace 1 "$log"
+check_usage --mode fpm --trace 1 "$fpm_log"
 echo "mmh-replan: OK"
