@@ -149,6 +149,24 @@ TEST(FpmPlanner, SidewaysBackwardsAndAcceleratingStarts) {
   verify(limit, planner.plan(limit), "at the limit");
 }
 
+TEST(FpmPlanner, EndingASwerveAtFullSpeedReleasesTheTurnSmoothly) {
+  // The state an EAM swerve hands over at v_max: turning at 1.5 m/s^2 sideways. The turn cannot
+  // end at once; the jerk energy of releasing it over the ramp time (a^2 / ramp, about 2.5
+  // m^2/s^5 at the configured 0.9 s) stays small. A fade shortened until it added no speed took 5
+  // ms at 300 m/s^3: 450 m^2/s^5 in its first 0.3 s. With the configured time weight (its ramps
+  // balance jerk energy against time).
+  const mmh::fpm::Planner planner(
+      mmh::fpm::loadParams(mmh::Config::loadFile(MMH_SOURCE_DIR "/deploy/config/default.yaml")));
+  for (const Vector3d& a0 : {Vector3d(0.0, -1.5, 0.0), Vector3d(0.05, 1.5, 0.0)}) {
+    const auto r = request(Vector3d(0, 0, 1.2), Vector3d(2.99, 0.0, 0.0), a0, Vector3d(15, 2, 1.2));
+    const auto res = planner.plan(r);
+    verify(r, res, "end of a swerve");
+    const mmh::Trajectory& t = res.trajectory;
+    EXPECT_LT(t.jerkEnergy() - t.tail(0.3).jerkEnergy(), 10.0) << a0.transpose();
+    EXPECT_LT(t.jerkEnergy(), 60.0) << a0.transpose();
+  }
+}
+
 TEST(FpmPlanner, RandomStartStatesAreAlwaysPlannedAndVerified) {
   const mmh::fpm::Planner planner(params());
   std::mt19937 rng(42);
