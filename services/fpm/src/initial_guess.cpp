@@ -189,10 +189,9 @@ InitialGuess makeInitialGuess(const KinematicState& start, const Eigen::Vector3d
   const double a0 = start.acceleration.norm();
   if (a0 < 1e-6) return guessFromSteadyStart(start, target, waypoints, options);
   // Let the start acceleration fade out first (jerk as in the ramps), then plan from the state
-  // reached. Near the speed limit the fade may not add speed: its end velocity keeps the
-  // direction it turns to but not more than the limit's speed. Shortening the fade instead cost
-  // a vehicle at v_max ending a swerve (1.5 m/s^2 sideways) a 5 ms fade at 300 m/s^3, 450
-  // m^2/s^5 of jerk energy in one flight.
+  // reached. Near the speed limit the fade keeps its length, and its end velocity keeps the
+  // direction it turns to but not more than the limit's speed: a fade shortened until it adds
+  // no speed ends a turn at v_max in a jerk no airframe follows.
   const double jerk = options.a_max / options.ramp_s;
   const double fade = std::max(a0 / jerk, 0.005);
   const double speed_cap = std::max(start.velocity.norm(), options.v_max);
