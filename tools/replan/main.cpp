@@ -26,11 +26,9 @@ int main(int argc, char** argv) {
   mmh::ArgParser parser(
       "mmh-replan",
       "Plans every PLAN_REQUEST_EAM (or _SOM, _FPM) of recorded flights (lcm-logger or mmh-stack "
-      "--log) "
-      "again with this build's planner and the map the mode had rebuilt from LOCAL_MAP then (FPM "
-      "needs none), and "
-      "compares with the recorded PLAN_RESULT: which failures are answered now, which answers "
-      "fail now, and why.");
+      "--log) again with this build's planner and the map the mode had rebuilt from LOCAL_MAP "
+      "then (FPM needs none), and compares with the recorded PLAN_RESULT: which failures are "
+      "answered now, which answers fail now, and why.");
   parser.addString("--mode", &options.mode, "eam, som or fpm");
   parser.addString("--config", &node.config_path,
                    "configuration (default: $MMH_CONFIG or deploy/config/default.yaml)");

@@ -10,13 +10,13 @@
 #include <regex>
 
 #include "eam_node.hpp"
+#include "fpm_node.hpp"
 #include "mmh/common/checked_decode.hpp"
 #include "mmh/common/lcm_runtime.hpp"
 #include "mmh/common/local_map_codec.hpp"
 #include "mmh/common/msg_convert.hpp"
 #include "mmh/common/plan_status.hpp"
 #include "mmh/eam/planner.hpp"
-#include "mmh/fpm/planner.hpp"
 #include "mmh/local_map_t.hpp"
 #include "mmh/plan_request_t.hpp"
 #include "mmh/plan_result_t.hpp"
@@ -37,8 +37,8 @@ struct ModePlanner {
   std::string request_channel;
   int8_t wire_mode = 0;
   PlanFn plan;
-  std::function<void(const VoxelGrid&)> prepare;  // a new keyframe (none: nothing to prepare)
-  bool needs_map = true;                          // FPM plans without one
+  // What a new keyframe prepares; none for a mode that plans without a map (FPM).
+  std::function<void(const VoxelGrid&)> prepare;
 };
 
 ModePlanner makePlanner(const std::string& mode, const ReplanOptions& options) {
@@ -74,14 +74,10 @@ ModePlanner makePlanner(const std::string& mode, const ReplanOptions& options) {
     auto planner = std::make_shared<fpm::Planner>(fpm::loadParams(config));
     return {channels::kPlanRequestFpm, plan_request_t::MODE_FPM,
             [planner](const VoxelGrid&, const plan_request_t& msg) {
-              fpm::Request req;
-              req.start = startStateOf(msg);
-              req.target = toVec3(msg.target);
-              req.max_speed_mps = msg.max_speed_mps;
-              const fpm::Result r = planner->plan(req);
+              const fpm::Result r = planner->plan(fpmRequestOf(msg));
               return Answer{r.ok, r.ok ? "" : std::string(toString(r.status)) + ": " + r.detail};
             },
-            nullptr, false};
+            nullptr};
   }
   throw ReplanInputError("unknown mode '" + mode + "' (eam, som or fpm)");
 }
@@ -120,7 +116,7 @@ std::vector<ReplanOutcome> replanLog(const std::string& log_path, const ReplanOp
       o.request_id = msg.request_id;
       o.start_speed_mps = toVec3(msg.start_velocity).norm();
       o.start_acceleration_mps2 = toVec3(msg.start_acceleration).norm();
-      if (map.hasMap() || !planner.needs_map) {
+      if (map.hasMap() || !planner.prepare) {
         const auto started = std::chrono::steady_clock::now();
         const Answer a = planner.plan(map.grid(), msg);
         o.compute_ms =

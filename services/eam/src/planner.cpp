@@ -267,19 +267,19 @@ struct Planner::Attempt {
 namespace {
 
 // Nothing pushes the free control points vertically: every anchor pair repels horizontally
-// (vertical obstacles, the common case) and the points keep clear of the geofence's floor and
-// ceiling. The altitude profile of the guess is then kept and only x and y are optimised, a
-// third fewer variables (the jerk energy is separable per axis, so z stays as smooth as the
-// guess was).
+// (vertical obstacles, the common case) and the points lie between the geofence's walls
+// (costSettingsFor), where the walls do not push. The altitude profile of the guess is then kept
+// and only x and y are optimised, a third fewer variables (the jerk energy is separable per axis,
+// so z stays as smooth as the guess was).
 bool horizontalProblem(const PairSet& pairs, const Eigen::Matrix3Xd& q,
-                       const std::vector<int>& free_points, const EamParams& p) {
+                       const std::vector<int>& free_points, const CostSettings& walls) {
   constexpr double kFlat = 1e-3;
   for (int i : free_points) {
     for (const AnchorPair& pair : pairs[i]) {
       if (std::abs(pair.v.z()) > kFlat) return false;
     }
     const double z = q(2, i);
-    if (z < p.geofence_min.z() + 0.05 || z > p.geofence_max.z() - 0.05) return false;
+    if (z < walls.box_min.z() || z > walls.box_max.z()) return false;
   }
   return true;
 }
@@ -521,7 +521,8 @@ std::optional<Planner::RoundsOutcome> Planner::reboundRound(
   w.feasibility = at.feasibility_boost * P.lambda_feasibility;
   r.weights = w;
   const BsplineCost cost(settings, w, &at.pairs);
-  const bool keep_altitude = horizontalProblem(at.pairs, at.spline.controlPoints(), free_points, P);
+  const bool keep_altitude =
+      horizontalProblem(at.pairs, at.spline.controlPoints(), free_points, settings);
   const OptimizeResult opt = timed(&r.stats.optimize_us, [&] {
     return optimizeControlPoints(at.spline, cost, free_points, P.max_iterations,
                                  P.optimizer_ftol_rel, keep_altitude);

@@ -7,6 +7,15 @@
 
 namespace mmh {
 
+fpm::Request fpmRequestOf(const plan_request_t& msg) {
+  fpm::Request request;
+  request.start = startStateOf(msg);
+  request.target = toVec3(msg.target);
+  request.waypoints = getWaypoints(msg);
+  request.max_speed_mps = msg.max_speed_mps;
+  return request;
+}
+
 FpmNode::FpmNode(ServiceContext& ctx, const Config& config)
     : ctx_(ctx), planner_(fpm::loadParams(config)) {
   ctx_.subscribe(channels::kPlanRequestFpm, &FpmNode::onPlanRequest, this);
@@ -26,12 +35,7 @@ plan_result_t FpmNode::answer(const fpm::Planner& planner, const plan_request_t&
     r.status = PlanStatus::kBadInput;
     r.detail = "request for mode " + std::to_string(msg.mode) + " on the FPM channel";
   } else {
-    fpm::Request request;
-    request.start = startStateOf(msg);
-    request.target = toVec3(msg.target);
-    request.waypoints = getWaypoints(msg);
-    request.max_speed_mps = msg.max_speed_mps;
-    r = planner.plan(request);
+    r = planner.plan(fpmRequestOf(msg));
   }
   const auto t1 = std::chrono::steady_clock::now();
   out.compute_us = std::chrono::duration_cast<std::chrono::microseconds>(t1 - t0).count();

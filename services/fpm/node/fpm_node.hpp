@@ -10,6 +10,9 @@
 
 namespace mmh {
 
+// The planner's request for a PLAN_REQUEST_FPM: start state, target, waypoints, speed limit.
+fpm::Request fpmRequestOf(const plan_request_t& msg);
+
 class FpmNode {
  public:
   FpmNode(ServiceContext& ctx, const Config& config);

@@ -151,10 +151,9 @@ TEST(FpmPlanner, SidewaysBackwardsAndAcceleratingStarts) {
 
 TEST(FpmPlanner, EndingASwerveAtFullSpeedReleasesTheTurnSmoothly) {
   // The state an EAM swerve hands over at v_max: turning at 1.5 m/s^2 sideways. The turn cannot
-  // end at once; the jerk energy of releasing it over the ramp time (a^2 / ramp, about 2.5
-  // m^2/s^5 at the configured 0.9 s) stays small. A fade shortened until it added no speed took 5
-  // ms at 300 m/s^3: 450 m^2/s^5 in its first 0.3 s. With the configured time weight (its ramps
-  // balance jerk energy against time).
+  // end at once; released over the ramp time of the configured time weight (0.9 s), its jerk
+  // energy (a^2 / ramp, about 2.5 m^2/s^5) stays small. A fade shortened until it added no speed
+  // took 5 ms at 300 m/s^3: 450 m^2/s^5 in its first 0.3 s.
   const mmh::fpm::Planner planner(
       mmh::fpm::loadParams(mmh::Config::loadFile(MMH_SOURCE_DIR "/deploy/config/default.yaml")));
   for (const Vector3d& a0 : {Vector3d(0.0, -1.5, 0.0), Vector3d(0.05, 1.5, 0.0)}) {
