@@ -386,6 +386,9 @@ std::vector<KeySpec> buildKeys() {
                     "... or this far from every place flown since the goal was set (0: off)")),
       real("arbiter.stuck_after_s", 0.5, 600.0, "4.0",
            "No progress this long: stuck (retries throttled, one back-off)"),
+      optional(real("arbiter.stuck_still_s", 0.1, 600.0, "1.0",
+                    "... or at rest this long with no mode's answer committed (at least "
+                    "stuck_after_s: off)")),
       real("arbiter.stuck_retry_period_s", 0.0, 60.0, "1.0",
            "While stuck, retries come at most this often"),
       real("arbiter.backoff_min_distance_m", 0.1, 20.0, "1.0",

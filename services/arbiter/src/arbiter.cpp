@@ -155,6 +155,11 @@ void Arbiter::onMapUpdated(const VoxelGrid& grid, int64_t map_seq, int64_t map_u
 
 void Arbiter::onOdometry(const KinematicState& state, int64_t now) {
   odometry_ = state;
+  if (state.velocity.norm() > params_.braking_speed_mps) {
+    still_since_utime_.reset();
+  } else if (!still_since_utime_) {
+    still_since_utime_ = now;
+  }
   odometry_utime_ = std::max(odometry_utime_, now);
   now_ = std::max(now_, now);
   if (hasGoal()) progress_.observe(now_, state.position, (state.position - goal_.position).norm());
@@ -383,7 +388,8 @@ void Arbiter::evaluate(int64_t now) {
     return;
   }
   if (usesAwareness(params_.policy) && (!awareness_ || awareness_->goal_id != goal_.id)) return;
-  const StuckResponse stuck = stuckResponse(progress_.secondsWithoutProgress(now), params_);
+  const StuckResponse stuck =
+      stuckResponse(progress_.secondsWithoutProgress(now), stillUnansweredS(now), params_);
   if (stuck == StuckResponse::kGiveUp && phase_ != Phase::kUnreachable &&
       phase_ != Phase::kNewGoal) {
     giveUp(now);
@@ -417,6 +423,11 @@ void Arbiter::evaluate(int64_t now) {
   if (modes.empty()) return;
   if (trigger == Trigger::kRetry) chain_.beginRetry(modes.front());
   startRound(trigger, modes, now, back_off);
+}
+
+double Arbiter::stillUnansweredS(int64_t now) const {
+  if (!still_since_utime_) return 0.0;
+  return std::max(0.0, (now - std::max(*still_since_utime_, last_answer_utime_)) * kUs);
 }
 
 void Arbiter::slowDownIfTooFast(int64_t now) {
@@ -688,6 +699,7 @@ void Arbiter::decide(int64_t now, bool by_deadline) {
     if (phase_ == Phase::kUnreachable) progress_.restart(now);  // a new chance to progress
     commit(best->trajectory, round.start.start_utime, best->mode, round.target_is_goal,
            round.repairs);
+    last_answer_utime_ = now;
     enterPhase(Phase::kTracking);
     chain_.reset();
     d.outcome = Outcome::kCommitted;
@@ -750,6 +762,7 @@ bool Arbiter::retraceOutOfTheSpot(const Round& round, DecisionOut& d) {
     if (!insideGeofence(fence, way->position(s))) return false;
   }
   commit(*way, round.start.start_utime, Mode::kNone, false);
+  last_answer_utime_ = now_;
   committed_.retrace = true;
   committed_.escape_min_distance_m = min_distance_m;
   // Flown to its end before the modes plan again (a halfway replan from inside the spot would
@@ -781,8 +794,8 @@ bool Arbiter::stopIfNoTimeLeft(int64_t now, bool by_deadline, const std::string&
   stop.fallback_exhausted = chain_.exhausted();
   stop.by_deadline = by_deadline;
   if (!stop.danger_ahead || stop.committed_is_stop) return false;
-  const bool stuck =
-      stuckResponse(progress_.secondsWithoutProgress(now), params_) != StuckResponse::kNone;
+  const bool stuck = stuckResponse(progress_.secondsWithoutProgress(now), stillUnansweredS(now),
+                                   params_) != StuckResponse::kNone;
   stop.retry_held_back = retryThrottled(Trigger::kRetry, false, false, stuck,
                                         (now - last_round_utime_) * kUs, params_);
   stop.stop_can_wait = stopCanWait(now);

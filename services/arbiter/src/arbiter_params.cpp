@@ -102,6 +102,7 @@ ArbiterParams loadArbiterParams(const Config& config) {
   p.progress_min_step_m = config.getDouble("arbiter.progress_min_step_m");
   p.progress_new_ground_m = config.getDouble("arbiter.progress_new_ground_m");
   p.stuck_after_s = config.getDouble("arbiter.stuck_after_s");
+  p.stuck_still_s = config.getDouble("arbiter.stuck_still_s");
   p.stuck_retry_period_s = config.getDouble("arbiter.stuck_retry_period_s");
   p.backoff_min_distance_m = config.getDouble("arbiter.backoff_min_distance_m");
   p.retrace_speed_mps = config.getDouble("arbiter.retrace_speed_mps");

@@ -101,9 +101,15 @@ bool retryThrottled(Trigger trigger, bool braking_in_stop, bool collision_pendin
          (stuck && since_last_round_s < params.stuck_retry_period_s);
 }
 
-StuckResponse stuckResponse(double no_progress_s, const ArbiterParams& params) {
+StuckResponse stuckResponse(double no_progress_s, double still_unanswered_s,
+                            const ArbiterParams& params) {
   if (no_progress_s >= params.give_up_s) return StuckResponse::kGiveUp;
   if (no_progress_s >= params.stuck_after_s) return StuckResponse::kBackOff;
+  // Hovering where every answer fails or is refused: the same rounds would fail on until
+  // stuck_after_s, so the vehicle is stuck already.
+  if (no_progress_s >= params.stuck_still_s && still_unanswered_s >= params.stuck_still_s) {
+    return StuckResponse::kBackOff;
+  }
   return StuckResponse::kNone;
 }
 

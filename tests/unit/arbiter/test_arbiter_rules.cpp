@@ -1034,10 +1034,12 @@ TEST_F(ArbiterRules, WithoutProgressRetriesSlowDownThenTheGoalIsUnreachableUntil
   EXPECT_NE(unreachable->detail.find("no path"), std::string::npos);  // the last failure
   EXPECT_EQ(a->counters().unreachable_goals, 1);
   // Without the stuck detector: SOM and EAM on every map, 800 calls in 40 s. With it: so for
-  // stuck_after_s, then one call per stuck_retry_period_s, then one per unreachable_retry_s.
+  // stuck_still_s (at rest, no answer committed; stuck_after_s for a vehicle that moves), then
+  // one call per stuck_retry_period_s, then one per unreachable_retry_s.
+  ASSERT_LT(params_.stuck_still_s, params_.stuck_after_s);
   const double expected =
-      params_.stuck_after_s * 10.0 * 2.0 +
-      (params_.give_up_s - params_.stuck_after_s) / params_.stuck_retry_period_s +
+      params_.stuck_still_s * 10.0 * 2.0 +
+      (params_.give_up_s - params_.stuck_still_s) / params_.stuck_retry_period_s +
       (40.0 - params_.give_up_s) / params_.unreachable_retry_s;
   EXPECT_LE(requests, expected + 4);
   // A new goal is planned for at once.

@@ -249,9 +249,22 @@ TEST(ReplanRules, RetriesWhileStuckComeAtMostEveryStuckRetryPeriod) {
 
 TEST(ReplanRules, NoProgressMeansStuckThenUnreachable) {
   const ArbiterParams p = paramsFor(Policy::kMmh);
-  EXPECT_EQ(stuckResponse(p.stuck_after_s - 0.1, p), StuckResponse::kNone);
-  EXPECT_EQ(stuckResponse(p.stuck_after_s + 0.1, p), StuckResponse::kBackOff);
-  EXPECT_EQ(stuckResponse(p.give_up_s + 0.1, p), StuckResponse::kGiveUp);
+  EXPECT_EQ(stuckResponse(p.stuck_after_s - 0.1, 0.0, p), StuckResponse::kNone);
+  EXPECT_EQ(stuckResponse(p.stuck_after_s + 0.1, 0.0, p), StuckResponse::kBackOff);
+  EXPECT_EQ(stuckResponse(p.give_up_s + 0.1, 0.0, p), StuckResponse::kGiveUp);
+}
+
+TEST(ReplanRules, AVehicleAtRestThatNoModeMovesIsStuckSooner) {
+  const ArbiterParams p = paramsFor(Policy::kMmh);
+  ASSERT_LT(p.stuck_still_s, p.stuck_after_s);
+  const double still = p.stuck_still_s + 0.1;
+  EXPECT_EQ(stuckResponse(still, still, p), StuckResponse::kBackOff);
+  // Moving, or an answer committed since it came to rest: only the progress clock counts.
+  EXPECT_EQ(stuckResponse(still, 0.0, p), StuckResponse::kNone);
+  EXPECT_EQ(stuckResponse(still, p.stuck_still_s - 0.1, p), StuckResponse::kNone);
+  // Progress made just before it came to rest: not yet.
+  EXPECT_EQ(stuckResponse(p.stuck_still_s - 0.1, still, p), StuckResponse::kNone);
+  EXPECT_EQ(stuckResponse(p.give_up_s + 0.1, still, p), StuckResponse::kGiveUp);
 }
 
 TEST(ReplanRules, AStuckRetryBacksOffOncePerStuckPeriod) {

@@ -293,6 +293,8 @@ class Arbiter {
   // Whether a danger on the committed trajectory lies on what the vehicle flies: with a backup
   // stop, only an obstacle on the backup or unmapped space within its reach counts; one beyond
   // the backup stop is answered already (the vehicle stops before it unless a mode answers).
+  // How long the vehicle has been at rest with no mode's answer committed (0: moving).
+  double stillUnansweredS(int64_t now) const;
   bool dangerOnFlownTrajectory(int64_t now) const;
   KinematicState stateAt(int64_t utime) const;
   // What the vehicle flies: the committed trajectory, or its backup (Committed::backup).
@@ -326,6 +328,8 @@ class Arbiter {
   LatencyMonitor latency_;
   LatencyBudget budget_;
   std::optional<int64_t> last_backoff_utime_;
+  std::optional<int64_t> still_since_utime_;  // the vehicle has been at rest since then
+  int64_t last_answer_utime_ = 0;             // a mode's answer (or a retrace) was last committed
   std::string last_failure_notes_;  // of the newest failed round, for the unreachable report
   int64_t last_round_utime_ = 0;
   Eigen::Vector3d last_round_position_ = Eigen::Vector3d::Zero();

@@ -120,6 +120,7 @@ struct ArbiterParams {
   double progress_min_step_m = 0.5;     // progress: this much nearer to the goal than ever before
   double progress_new_ground_m = 1.0;   // ... or this far from the places flown (0: off)
   double stuck_after_s = 4.0;           // no progress this long: stuck
+  double stuck_still_s = 1.0;           // ... or at rest this long, no mode's answer committed
   double stuck_retry_period_s = 1.0;    // retries while stuck come at most this often
   double backoff_min_distance_m = 1.0;  // a back-off target is at least this far away
   double retrace_speed_mps = 0.5;       // no mode answers a back-off: the way back flown this fast

@@ -14,9 +14,10 @@
 //   halfway                 replan_fraction of the committed flown     FPM if S, else SOM
 //                           (not on the way to the goal, unless slow)
 //   fixed                   fixed_replan_distance_m flown (baselines)  the policy's one mode
-// While stuck (no progress for stuck_after_s) retries come at most every stuck_retry_period_s and
-// one of them backs off to recently flown free space; after give_up_s the goal is unreachable:
-// the vehicle holds and retries every unreachable_retry_s.
+// While stuck (no progress for stuck_after_s, or for stuck_still_s at rest with no mode's answer
+// committed) retries come at most every stuck_retry_period_s and one of them backs off to recently
+// flown free space; after give_up_s the goal is unreachable: the vehicle holds and retries every
+// unreachable_retry_s.
 #pragma once
 
 #include <optional>
@@ -97,7 +98,9 @@ enum class StuckResponse {
   kBackOff,  // stuck: throttle retries, back off to free space once per stuck_after_s
   kGiveUp,   // unreachable: hold and say why
 };
-StuckResponse stuckResponse(double no_progress_s, const ArbiterParams& params);
+// still_unanswered_s: how long the vehicle has been at rest with no mode's answer committed.
+StuckResponse stuckResponse(double no_progress_s, double still_unanswered_s,
+                            const ArbiterParams& params);
 
 // Stuck: once per stuck_after_s a retry backs off to recently flown free space, asking every mode
 // of the fallback chain at once (the best answer is committed), not only the mode whose turn it
