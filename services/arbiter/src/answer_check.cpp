@@ -47,7 +47,8 @@ namespace {
 
 // firstUnknownWithin, with or without the centre line.
 std::optional<double> firstUnmapped(const Trajectory& t, const VoxelGrid& grid, double horizon_m,
-                                    double step_s, const BesideThePath& beside, bool centre_line) {
+                                    double step_s, const BesideThePath& beside, bool centre_line,
+                                    UnmappedCell* where) {
   const Eigen::Vector3d start = t.position(0.0);
   const Eigen::Vector3i start_cell = grid.localIndexOf(start);
   const double res = grid.resolution();
@@ -86,7 +87,8 @@ std::optional<double> firstUnmapped(const Trajectory& t, const VoxelGrid& grid, 
     }
     return false;
   };
-  auto besideHiddenFace = [&](const Eigen::Vector3d& p, const Eigen::Vector3i& centre, bool near) {
+  auto besideHiddenFace = [&](const Eigen::Vector3d& p, const Eigen::Vector3i& centre, bool near,
+                              Eigen::Vector3i* found) {
     for (int dy = -beside_cells; dy <= beside_cells; ++dy)
       for (int dx = -beside_cells; dx <= beside_cells; ++dx) {
         const Eigen::Vector3i cell = centre + Eigen::Vector3i(dx, dy, 0);
@@ -94,7 +96,10 @@ std::optional<double> firstUnmapped(const Trajectory& t, const VoxelGrid& grid, 
         if (cellDistanceSq(cell, p) > radius_sq) continue;
         // The airframe's own cells at the start: where it is now, seen or not.
         if (cellDistanceSq(cell, start) <= radius_sq) continue;
-        if (nearMappedObstacle(cell) && (near || !inShadow(cell))) return true;
+        if (nearMappedObstacle(cell) && (near || !inShadow(cell))) {
+          *found = cell;
+          return true;
+        }
       }
     return false;
   };
@@ -107,9 +112,15 @@ std::optional<double> firstUnmapped(const Trajectory& t, const VoxelGrid& grid, 
     const Eigen::Vector3i cell = grid.localIndexOf(p);
     // The vehicle's own cell: where it is now, seen or not.
     if (centre_line && cell != start_cell && grid.inWindow(cell) &&
-        grid.at(cell) == Occupancy::kUnknown)
+        grid.at(cell) == Occupancy::kUnknown) {
+      if (where) *where = {grid.centerOfLocal(cell), false};
       return s;
-    if (check_beside && besideHiddenFace(p, cell, travelled <= beside.reach_m)) return s;
+    }
+    Eigen::Vector3i beside_cell;
+    if (check_beside && besideHiddenFace(p, cell, travelled <= beside.reach_m, &beside_cell)) {
+      if (where) *where = {grid.centerOfLocal(beside_cell), true};
+      return s;
+    }
   }
   return std::nullopt;
 }
@@ -118,28 +129,37 @@ std::optional<double> firstUnmapped(const Trajectory& t, const VoxelGrid& grid, 
 
 std::optional<double> firstUnknownWithin(const Trajectory& t, const VoxelGrid& grid,
                                          double horizon_m, double step_s,
-                                         const BesideThePath& beside) {
-  return firstUnmapped(t, grid, horizon_m, step_s, beside, true);
+                                         const BesideThePath& beside, UnmappedCell* where) {
+  return firstUnmapped(t, grid, horizon_m, step_s, beside, true, where);
 }
 
 bool touchesHiddenFace(const Trajectory& stop, const VoxelGrid& grid, const ArbiterParams& params) {
   const double length_m = stop.arcLength();
   return firstUnmapped(stop, grid, length_m, params.check_step_s,
-                       {params.vehicle_radius_m, params.hidden_face_m, length_m}, false)
+                       {params.vehicle_radius_m, params.hidden_face_m, length_m}, false, nullptr)
       .has_value();
 }
 
 std::optional<double> firstUnknownWithinReach(const Trajectory& t, double elapsed_s, double lead_s,
-                                              const VoxelGrid& grid, const ArbiterParams& params) {
+                                              const VoxelGrid& grid, const ArbiterParams& params,
+                                              UnmappedCell* where) {
   if (t.empty() || elapsed_s >= t.duration()) return std::nullopt;
   const double lead_end_s = std::min(t.duration(), elapsed_s + lead_s);
   const double horizon_m = t.arcLength(elapsed_s, lead_end_s) +
                            knownSpaceHorizonM(t.velocity(lead_end_s).norm(), params);
   const auto at = firstUnknownWithin(
       t.tail(elapsed_s), grid, horizon_m, params.check_step_s,
-      {params.vehicle_radius_m, params.hidden_face_m, params.hidden_face_reach_m});
+      {params.vehicle_radius_m, params.hidden_face_m, params.hidden_face_reach_m}, where);
   if (!at) return std::nullopt;
   return elapsed_s + *at;
+}
+
+std::string describeUnmappedCell(const UnmappedCell& cell) {
+  char text[112];
+  std::snprintf(text, sizeof(text), "at (%.2f, %.2f, %.2f)%s", cell.center.x(), cell.center.y(),
+                cell.center.z(),
+                cell.beside_path ? ", an obstacle's unseen side beside its path" : " on its path");
+  return text;
 }
 
 bool checkAnswer(const Trajectory& t, int64_t answer_start_utime, const RequestedStart& requested,
@@ -200,10 +220,11 @@ bool checkAnswer(const Trajectory& t, int64_t answer_start_utime, const Requeste
   // The stop from where the answer is when the next map can check it again must end in space
   // the sensor has seen: an answer accelerating from rest reaches farther than its start speed.
   if (grid) {
-    if (const auto at = firstUnknownWithinReach(t, 0.0, reach_lead_s, *grid, params)) {
-      char text[128];
-      std::snprintf(text, sizeof(text), "enters unmapped space %.2f s from its start", *at);
-      return fail(text);
+    UnmappedCell where;
+    if (const auto at = firstUnknownWithinReach(t, 0.0, reach_lead_s, *grid, params, &where)) {
+      char text[64];
+      std::snprintf(text, sizeof(text), "enters unmapped space %.2f s from its start, ", *at);
+      return fail(text + describeUnmappedCell(where));
     }
   }
   return true;

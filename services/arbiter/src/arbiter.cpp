@@ -136,11 +136,13 @@ void Arbiter::onMapUpdated(const VoxelGrid& grid, int64_t map_seq, int64_t map_u
   double eta_s = 0.0;
   if (hasCommitted() && !round_ && phase_ != Phase::kReached) {
     std::optional<double> threat_s;
+    UnmappedCell unmapped;
     if (collisionThreat(now_, &eta_s)) {
       threat_s = eta_s;
       threat_note_.clear();
-    } else if ((threat_s = unmappedAhead(now_, params_.stop_decision_margin_s))) {
-      threat_note_ = "unmapped space on the committed trajectory within stopping reach; ";
+    } else if ((threat_s = unmappedAhead(now_, params_.stop_decision_margin_s, &unmapped))) {
+      threat_note_ = "unmapped space on the committed trajectory within stopping reach, " +
+                     describeUnmappedCell(unmapped) + "; ";
     }
     if (threat_s) {
       collision_eta_s_ = collision_eta_s_ ? std::min(*collision_eta_s_, *threat_s) : *threat_s;
@@ -288,13 +290,14 @@ bool Arbiter::dangerOnFlownTrajectory(int64_t now) const {
              .has_value();
 }
 
-std::optional<double> Arbiter::unmappedAhead(int64_t now, double extra_s) const {
+std::optional<double> Arbiter::unmappedAhead(int64_t now, double extra_s,
+                                             UnmappedCell* where) const {
   // A retrace runs where the vehicle has flown: mapped as it went, or passed by the airframe.
   if (!grid_ || !hasCommitted() || committed_.mode == Mode::kStop || committed_.retrace)
     return std::nullopt;
   const double elapsed = std::max(0.0, (now - committed_.start_utime) * kUs);
   const auto at = firstUnknownWithinReach(committed_.trajectory, elapsed,
-                                          budget_.replan_lead_s + extra_s, *grid_, params_);
+                                          budget_.replan_lead_s + extra_s, *grid_, params_, where);
   if (!at) return std::nullopt;
   return *at - elapsed;
 }

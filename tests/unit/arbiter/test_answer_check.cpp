@@ -75,9 +75,14 @@ TEST(AnswerCheck, UnmappedSpaceWithinTheStopIsFoundAndBeyondItIsNot) {
   const Trajectory from_rest = straight(0.0, 1.0, 3.0);  // 4.5 m
   EXPECT_FALSE(firstUnknownWithin(from_rest, g, 0.3, 0.01));
   markUnknownSlab(g, 0.2, 0.4);  // right ahead of the start
-  const auto at = firstUnknownWithin(from_rest, g, 0.3, 0.01);
+  UnmappedCell where;
+  const auto at = firstUnknownWithin(from_rest, g, 0.3, 0.01, {}, &where);
   ASSERT_TRUE(at);
   EXPECT_NEAR(*at, std::sqrt(2.0 * 0.2), 0.02);  // x = t^2 / 2 reaches the slab at 0.2 m
+  // The slab's first cell on the path, centred at x = 0.25 m.
+  EXPECT_NEAR(where.center.x(), 0.25, 1e-9);
+  EXPECT_NEAR(where.center.y(), 0.05, 0.051);
+  EXPECT_FALSE(where.beside_path);
   // Farther than the horizon: space the sensor will see on the way.
   VoxelGrid far = mappedFreeGrid();
   markUnknownSlab(far, 2.0, 2.2);
@@ -110,11 +115,15 @@ TEST(AnswerCheck, AnUnseenSideOfAMappedObstacleBesideThePathCounts) {
   EXPECT_FALSE(firstUnknownWithin(creep, g, 2.0, 0.01));
   EXPECT_FALSE(firstUnknownWithin(creep, g, 2.0, 0.01, {0.15, 0.0, 2.0}));
   // A 0.15 m airframe touches the unknown cell at y = 0.1-0.2 m, 0.3 m from the occupied one.
-  const auto at = firstUnknownWithin(creep, g, 2.0, 0.01, {0.15, 0.3, 2.0});
+  UnmappedCell where;
+  const auto at = firstUnknownWithin(creep, g, 2.0, 0.01, {0.15, 0.3, 2.0}, &where);
   ASSERT_TRUE(at);
   // It reaches the cell's near face (x = 1.0) when the centre is at x = 1.0 - sqrt(0.15^2 -
   // 0.1^2) = 0.888 m.
   EXPECT_NEAR(*at, (1.0 - std::sqrt(0.15 * 0.15 - 0.1 * 0.1)) / 0.5, 0.03);
+  EXPECT_TRUE(where.beside_path);
+  EXPECT_NEAR(where.center.x(), 1.05, 1e-9);
+  EXPECT_NEAR(where.center.y(), 0.15, 1e-9);
   // Beyond the horizon it does not count yet.
   EXPECT_FALSE(firstUnknownWithin(creep, g, 0.8, 0.01, {0.15, 0.3, 2.0}));
   // In plain sight of the start, it counts beyond the reach beside the path too: a side the
@@ -221,6 +230,8 @@ TEST(AnswerCheck, AnAnswerWhoseStopWouldEndInUnmappedSpaceIsRefused) {
   markUnknownSlab(g, 0.2, 0.4);
   EXPECT_FALSE(checkAnswer(answer, requested.start_utime, requested, &g, p, 0.0, &why));
   EXPECT_NE(why.find("enters unmapped space"), std::string::npos) << why;
+  EXPECT_NE(why.find("at (0.25, "), std::string::npos) << why;  // where: the slab's first cell
+  EXPECT_NE(why.find("on its path"), std::string::npos) << why;
   p.known_space_margin_m = 0.1;  // a stop from rest that ends before the slab
   EXPECT_TRUE(checkAnswer(answer, requested.start_utime, requested, &g, p, 0.0, &why)) << why;
 }

@@ -45,13 +45,22 @@ struct BesideThePath {
   double reach_m = 0.0;
 };
 
+// Where a trajectory meets unmapped space: the unknown cell's centre, and whether it lies beside
+// the path (an obstacle's unseen side the airframe would touch) rather than on its centre line.
+struct UnmappedCell {
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  bool beside_path = false;
+};
+
 // Time of the first sample (every step_s) within horizon_m of path length from the start whose
 // cell is unknown in `grid`, or beside which the airframe touches an unknown cell that counts
 // (BesideThePath). Cells the airframe touches at the start (the start's own cell on the centre
-// line) and cells outside the window do not count: the vehicle is there, seen or not.
+// line) and cells outside the window do not count: the vehicle is there, seen or not. `where`,
+// if given, receives that cell.
 std::optional<double> firstUnknownWithin(const Trajectory& t, const VoxelGrid& grid,
                                          double horizon_m, double step_s,
-                                         const BesideThePath& beside = {});
+                                         const BesideThePath& beside = {},
+                                         UnmappedCell* where = nullptr);
 
 // Whether the airframe on `stop`, anywhere along it, touches an unknown cell beside its centre
 // line that counts (BesideThePath from vehicle_radius_m and hidden_face_m, the whole stop within
@@ -64,9 +73,13 @@ bool touchesHiddenFace(const Trajectory& stop, const VoxelGrid& grid, const Arbi
 // Returns the time (on t) of the first unknown cell within that reach - the path of lead_s plus
 // knownSpaceHorizonM of the speed there - on the centre line or beside it (BesideThePath from
 // vehicle_radius_m, hidden_face_m and hidden_face_reach_m), or nothing when the reach lies in
-// mapped space.
+// mapped space. `where`, if given, receives that cell.
 std::optional<double> firstUnknownWithinReach(const Trajectory& t, double elapsed_s, double lead_s,
-                                              const VoxelGrid& grid, const ArbiterParams& params);
+                                              const VoxelGrid& grid, const ArbiterParams& params,
+                                              UnmappedCell* where = nullptr);
+
+// "at (x, y, z) on its path" or "at (x, y, z), an obstacle's unseen side beside its path".
+std::string describeUnmappedCell(const UnmappedCell& cell);
 
 // True when `answer` (starting at answer_start_utime) may be committed for `requested`;
 // otherwise false with the first failed check in *why. `grid` may be null (no map yet: no

@@ -289,7 +289,9 @@ class Arbiter {
   // Seconds until the committed trajectory enters unmapped space within the vehicle's reach
   // (firstUnknownWithinReach) if the stop began extra_s after the current replan lead; nothing
   // when the reach is mapped, or the committed trajectory is a stop (chosen as the safest).
-  std::optional<double> unmappedAhead(int64_t now, double extra_s) const;
+  // `where`, if given, receives the unknown cell.
+  std::optional<double> unmappedAhead(int64_t now, double extra_s,
+                                      UnmappedCell* where = nullptr) const;
   // Whether a danger on the committed trajectory lies on what the vehicle flies: with a backup
   // stop, only an obstacle on the backup or unmapped space within its reach counts; one beyond
   // the backup stop is answered already (the vehicle stops before it unless a mode answers).
