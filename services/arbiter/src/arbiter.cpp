@@ -391,8 +391,7 @@ void Arbiter::evaluate(int64_t now) {
     return;
   }
   if (usesAwareness(params_.policy) && (!awareness_ || awareness_->goal_id != goal_.id)) return;
-  const StuckResponse stuck =
-      stuckResponse(progress_.secondsWithoutProgress(now), stillUnansweredS(now), params_);
+  const StuckResponse stuck = stuckNow(now);
   if (stuck == StuckResponse::kGiveUp && phase_ != Phase::kUnreachable &&
       phase_ != Phase::kNewGoal) {
     giveUp(now);
@@ -431,6 +430,10 @@ void Arbiter::evaluate(int64_t now) {
 double Arbiter::stillUnansweredS(int64_t now) const {
   if (!still_since_utime_) return 0.0;
   return std::max(0.0, (now - std::max(*still_since_utime_, last_answer_utime_)) * kUs);
+}
+
+StuckResponse Arbiter::stuckNow(int64_t now) const {
+  return stuckResponse(progress_.secondsWithoutProgress(now), stillUnansweredS(now), params_);
 }
 
 void Arbiter::slowDownIfTooFast(int64_t now) {
@@ -797,8 +800,7 @@ bool Arbiter::stopIfNoTimeLeft(int64_t now, bool by_deadline, const std::string&
   stop.fallback_exhausted = chain_.exhausted();
   stop.by_deadline = by_deadline;
   if (!stop.danger_ahead || stop.committed_is_stop) return false;
-  const bool stuck = stuckResponse(progress_.secondsWithoutProgress(now), stillUnansweredS(now),
-                                   params_) != StuckResponse::kNone;
+  const bool stuck = stuckNow(now) != StuckResponse::kNone;
   stop.retry_held_back = retryThrottled(Trigger::kRetry, false, false, stuck,
                                         (now - last_round_utime_) * kUs, params_);
   stop.stop_can_wait = stopCanWait(now);

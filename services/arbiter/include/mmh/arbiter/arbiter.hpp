@@ -295,9 +295,11 @@ class Arbiter {
   // Whether a danger on the committed trajectory lies on what the vehicle flies: with a backup
   // stop, only an obstacle on the backup or unmapped space within its reach counts; one beyond
   // the backup stop is answered already (the vehicle stops before it unless a mode answers).
+  bool dangerOnFlownTrajectory(int64_t now) const;
   // How long the vehicle has been at rest with no mode's answer committed (0: moving).
   double stillUnansweredS(int64_t now) const;
-  bool dangerOnFlownTrajectory(int64_t now) const;
+  // The stuck detector's response now (stuckResponse of the progress and the at-rest clocks).
+  StuckResponse stuckNow(int64_t now) const;
   KinematicState stateAt(int64_t utime) const;
   // What the vehicle flies: the committed trajectory, or its backup (Committed::backup).
   const Trajectory& flownTrajectory() const;
