@@ -85,21 +85,26 @@ std::string stopCensusMarkdown(const std::vector<FlightResult>& results) {
         "the decision's text, the failed modes from the failed decision just before it. Calls "
         "without commit: planning calls in a row whose rounds all ended without a commit. No "
         "progress: the distance to the goal did not shrink by "
-     << fmt(kProgressStepM, 1)
-     << " m. Per-stop detail in results.json (`stop_events`).\n\n"
-        "| density | method | flights | stops | stops / flight | causes | failed modes at the "
-        "stops | max calls w/o commit | longest no progress (s) | mean longest no progress (s) "
-        "|\n|---|---|---|---|---|---|---|---|---|---|\n";
+     << fmt(kProgressStepM, 1) << " m. To rest: stops during which the vehicle slowed to "
+     << fmt(kRestSpeedMps, 1)
+     << " m/s or less (the others only braked until a mode's answer replaced them). Held: "
+        "from the stop to the next commit, mean over the stops. Per-stop detail in "
+        "results.json (`stop_events`).\n\n"
+        "| density | method | flights | stops | to rest | held (s) | stops / flight | causes | "
+        "failed modes at the stops | max calls w/o commit | longest no progress (s) | mean "
+        "longest no progress (s) |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (double d : g.densities) {
     for (const std::string& m : g.methods) {
       std::map<std::string, int> causes, failed_modes;
-      int flights = 0, stops = 0, max_calls = 0;
-      std::vector<double> no_progress;
+      int flights = 0, stops = 0, to_rest = 0, max_calls = 0;
+      std::vector<double> no_progress, held;
       for (const FlightResult& r : results) {
         if (r.spec.density != d || r.spec.method != m || !r.error.empty()) continue;
         ++flights;
         for (const StopRecord& s : r.census.stops) {
           ++stops;
+          if (s.reachedRest()) ++to_rest;
+          if (std::isfinite(s.held_s)) held.push_back(s.held_s);
           ++causes[s.cause];
           for (const ModeFailure& f : s.failed_modes) ++failed_modes[f.mode + " " + f.reason];
         }
@@ -109,6 +114,7 @@ std::string stopCensusMarkdown(const std::vector<FlightResult>& results) {
       if (flights == 0) continue;
       const Stat np = statOf(no_progress);
       md << "| " << densityLabel(d) << " | " << m << " | " << flights << " | " << stops << " | "
+         << to_rest << " | " << fmt(held.empty() ? NAN : statOf(held).avg) << " | "
          << fmt(double(stops) / flights) << " | " << topCounts(causes, 4) << " | "
          << topCounts(failed_modes, 4) << " | " << max_calls << " | " << fmt(np.max, 1) << " | "
          << fmt(np.avg, 1) << " |\n";

@@ -23,9 +23,10 @@ nlohmann::json toJson(const StopRecord& s) {
   nlohmann::json failed = nlohmann::json::array();
   for (const ModeFailure& f : s.failed_modes) failed.push_back(toJson(f));
   return nlohmann::json{
-      {"time_s", s.time_s},     {"trigger", s.trigger},
-      {"cause", s.cause},       {"detail", s.detail},
-      {"failed_modes", failed}, {"failed_decisions_before", s.failed_decisions_before}};
+      {"time_s", s.time_s},         {"trigger", s.trigger},
+      {"cause", s.cause},           {"detail", s.detail},
+      {"failed_modes", failed},     {"failed_decisions_before", s.failed_decisions_before},
+      {"held_s", number(s.held_s)}, {"lowest_speed_mps", number(s.lowest_speed_mps)}};
 }
 
 StopRecord stopFromJson(const nlohmann::json& j) {
@@ -40,6 +41,9 @@ StopRecord stopFromJson(const nlohmann::json& j) {
                                          f.at("text").get<std::string>()});
   }
   s.failed_decisions_before = j.at("failed_decisions_before").get<int>();
+  // Not in results written before the census measured them: unknown, never "at rest".
+  s.held_s = j.contains("held_s") ? number(j.at("held_s")) : NAN;
+  s.lowest_speed_mps = j.contains("lowest_speed_mps") ? number(j.at("lowest_speed_mps")) : NAN;
   return s;
 }
 

@@ -148,7 +148,7 @@ struct Vehicle {
       p.mode = current_mode;
       p.energy = sim->metrics().energy;
       record.path.push_back(p);
-      census.onProgress(sinceStart(now), (p.position - options.sim.goal).norm());
+      census.onProgress(sinceStart(now), (p.position - options.sim.goal).norm(), p.speed);
     }
   }
 

@@ -134,6 +134,7 @@ void StopCensusBuilder::onDecision(const DecisionSample& d) {
   // A round that kept the committed trajectory chose a way on, as a commit does.
   if (d.outcome == arbiter_status_t::OUTCOME_COMMITTED ||
       d.outcome == arbiter_status_t::OUTCOME_KEPT) {
+    closeStop(d.time_s);
     calls_without_commit_ = 0;
     failed_since_commit_ = 0;
   } else {
@@ -146,6 +147,7 @@ void StopCensusBuilder::onDecision(const DecisionSample& d) {
     last_failures_ = failuresOf(d);
   }
   if (d.outcome == arbiter_status_t::OUTCOME_STOPPING) {
+    closeStop(d.time_s);
     StopRecord s;
     s.time_s = d.time_s;
     s.trigger = triggerName(d.trigger);
@@ -153,7 +155,9 @@ void StopCensusBuilder::onDecision(const DecisionSample& d) {
     s.detail = d.detail;
     if (follows_failure) s.failed_modes = last_failures_;
     s.failed_decisions_before = failed_since_commit_;
+    s.lowest_speed_mps = last_speed_mps_;
     census_.stops.push_back(std::move(s));
+    stop_holding_ = true;
   }
   last_decision_failed_ = d.outcome == arbiter_status_t::OUTCOME_FAILED;
   last_decision_time_s_ = d.time_s;
@@ -167,7 +171,19 @@ void StopCensusBuilder::noteNoProgress(double from_s, double to_s) {
   }
 }
 
-void StopCensusBuilder::onProgress(double time_s, double distance_to_goal_m) {
+void StopCensusBuilder::closeStop(double time_s) {
+  if (!stop_holding_) return;
+  StopRecord& s = census_.stops.back();
+  s.held_s = std::max(0.0, time_s - s.time_s);
+  stop_holding_ = false;
+}
+
+void StopCensusBuilder::onProgress(double time_s, double distance_to_goal_m, double speed_mps) {
+  last_speed_mps_ = speed_mps;
+  if (stop_holding_) {
+    StopRecord& s = census_.stops.back();
+    s.lowest_speed_mps = std::min(s.lowest_speed_mps, speed_mps);
+  }
   if (!have_progress_) {
     have_progress_ = true;
     best_distance_m_ = distance_to_goal_m;
@@ -188,6 +204,7 @@ FlightCensus StopCensusBuilder::finish(double end_time_s) const {
   done.census_.max_calls_without_commit =
       std::max(done.census_.max_calls_without_commit, done.calls_without_commit_);
   if (have_progress_) done.noteNoProgress(progress_time_s_, end_time_s);
+  done.closeStop(end_time_s);
   return done.census_;
 }
 

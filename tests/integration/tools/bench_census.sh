@@ -16,7 +16,7 @@ fail() { echo "FAIL: $*"; exit 1; }
 cat "$out/stdout"
 for where in "$out/stdout" "$out/bench/summary.md"; do
   grep -q "## Stops and stalls" "$where" || fail "no census section in $where"
-  grep -q "| density | method | flights | stops | stops / flight | causes | failed modes at the stops | max calls w/o commit | longest no progress (s) |" "$where" \
+  grep -q "| density | method | flights | stops | to rest | held (s) | stops / flight | causes | failed modes at the stops | max calls w/o commit | longest no progress (s) |" "$where" \
     || fail "census columns missing in $where"
   grep -qE "^\| 0\.20 \| mmh \| 1 \| [0-9]+ \|" "$where" || fail "no census row in $where"
 done
@@ -29,7 +29,10 @@ for key in ("stop_causes", "stop_events", "max_calls_without_commit", "longest_n
     assert key in r, key
 assert sum(r["stop_causes"].values()) == len(r["stop_events"])
 for s in r["stop_events"]:
-    assert {"time_s", "trigger", "cause", "detail", "failed_modes"} <= set(s), s
+    assert {"time_s", "trigger", "cause", "detail", "failed_modes", "held_s",
+            "lowest_speed_mps"} <= set(s), s
+    assert s["held_s"] >= 0 and s["time_s"] + s["held_s"] <= r["flight_time_s"] + 0.5, s
+    assert 0 <= s["lowest_speed_mps"] <= 3.2, s
 # Where the time goes: every mode slot, adding up to the flight's time.
 for key in ("time_by_mode_s", "time_lost_by_mode_s"):
     assert set(r[key]) == {"none", "fpm", "som", "eam", "stop"}, r[key]

@@ -151,15 +151,53 @@ TEST(StopCensus, CallsWithoutCommitRestartAtEachCommitAndCountAnOpenRound) {
   EXPECT_EQ(b.finish(3.0).max_calls_without_commit, 3);
 }
 
+TEST(StopCensus, AStopHoldsUntilTheNextCommitAndKnowsWhetherTheVehicleCameToRest) {
+  StopCensusBuilder b;
+  b.onProgress(0.0, 40.0, 3.0);
+  b.onDecision(decision(0.1, arbiter_status_t::OUTCOME_COMMITTED, 1, 1 << kFpm, "committed"));
+  b.onProgress(0.2, 39.7, 3.0);
+  // A stop that a mode's answer replaces 0.3 s later: the vehicle only braked to 2.4 m/s.
+  b.onDecision(decision(0.25, arbiter_status_t::OUTCOME_STOPPING, 3, 0, "no usable answer"));
+  b.onProgress(0.3, 39.4, 2.8);
+  b.onProgress(0.4, 39.1, 2.6);
+  b.onProgress(0.5, 38.9, 2.4);
+  b.onDecision(decision(0.55, arbiter_status_t::OUTCOME_COMMITTED, 4, 1 << kEam, "committed"));
+  b.onProgress(0.6, 38.6, 2.6);  // after the commit: not part of the stop
+  // A second stop that brakes to rest and holds until the flight ends.
+  b.onDecision(decision(1.0, arbiter_status_t::OUTCOME_STOPPING, 3, 0, "no usable answer"));
+  b.onProgress(1.5, 37.5, 1.2);
+  b.onProgress(2.5, 37.2, 0.05);
+  b.onProgress(3.0, 37.2, 0.0);
+  const FlightCensus c = b.finish(4.0);
+  ASSERT_EQ(c.stops.size(), 2u);
+  EXPECT_DOUBLE_EQ(c.stops[0].held_s, 0.3);
+  // The sample before the stop (3.0 m/s) and those while it held; not the one after the commit.
+  EXPECT_DOUBLE_EQ(c.stops[0].lowest_speed_mps, 2.4);
+  EXPECT_FALSE(c.stops[0].reachedRest());
+  EXPECT_DOUBLE_EQ(c.stops[1].held_s, 3.0);
+  EXPECT_DOUBLE_EQ(c.stops[1].lowest_speed_mps, 0.0);
+  EXPECT_TRUE(c.stops[1].reachedRest());
+  // A stop that another stop follows ends there.
+  StopCensusBuilder twice;
+  twice.onProgress(0.0, 40.0, 1.0);
+  twice.onDecision(decision(0.5, arbiter_status_t::OUTCOME_STOPPING, 3, 0, "no usable answer"));
+  twice.onDecision(decision(0.7, arbiter_status_t::OUTCOME_STOPPING, 3, 0, "LOCAL_MAP is stale"));
+  const FlightCensus t = twice.finish(1.0);
+  ASSERT_EQ(t.stops.size(), 2u);
+  EXPECT_NEAR(t.stops[0].held_s, 0.2, 1e-12);
+  EXPECT_NEAR(t.stops[1].held_s, 0.3, 1e-12);
+  EXPECT_DOUBLE_EQ(t.stops[1].lowest_speed_mps, 1.0);
+}
+
 TEST(StopCensus, LongestNoProgressNeedsMoreThanATenthOfAMetre) {
   StopCensusBuilder b;
-  b.onProgress(0.0, 40.0);
-  b.onProgress(1.0, 37.0);   // progress: 1 s without
-  b.onProgress(2.0, 36.95);  // less than 0.1 m: no progress
-  b.onProgress(3.0, 36.99);  // backwards
-  b.onProgress(4.5, 36.95);
-  b.onProgress(5.0, 36.85);  // progress after 4 s (from t = 1)
-  b.onProgress(6.0, 30.0);
+  b.onProgress(0.0, 40.0, 3.0);
+  b.onProgress(1.0, 37.0, 3.0);   // progress: 1 s without
+  b.onProgress(2.0, 36.95, 3.0);  // less than 0.1 m: no progress
+  b.onProgress(3.0, 36.99, 3.0);  // backwards
+  b.onProgress(4.5, 36.95, 3.0);
+  b.onProgress(5.0, 36.85, 3.0);  // progress after 4 s (from t = 1)
+  b.onProgress(6.0, 30.0, 3.0);
   FlightCensus c = b.finish(6.5);
   EXPECT_DOUBLE_EQ(c.longest_no_progress_s, 4.0);
   EXPECT_DOUBLE_EQ(c.longest_no_progress_from_s, 1.0);
