@@ -88,6 +88,8 @@ std::vector<KeySpec> buildKeys() {
       real("sim.yaw_time_constant_s", 0.0, 10.0, "0.2", "First-order lag of the yaw"),
       real("sim.yaw_lookahead_s", 0.01, 10.0, "0.5",
            "Yaw faces the trajectory point this far ahead"),
+      real("sim.yaw_lookahead_min_m", 0.0, 10.0, "0.2",
+           "... or a later one at least this far away horizontally (creeping)"),
       integer("sim.free_ray_stride", 0, 1000, "1",
               "Every k-th no-return ray is sent as a far point (clears free space; 0 = none)"),
       integer("sim.depth.width_px", 2, 4096, "160", "Depth camera width"),
@@ -130,6 +132,8 @@ std::vector<KeySpec> buildKeys() {
            "No TRAJECTORY and no arbiter HEARTBEAT this long: brake to a hover"),
       real("setpoint.yaw_lookahead_s", 0.01, 10.0, "0.5",
            "Yaw points at the trajectory point this far ahead"),
+      real("setpoint.yaw_lookahead_min_m", 0.0, 10.0, "0.2",
+           "... or a later one at least this far away horizontally (creeping)"),
       real("setpoint.max_yaw_rate_dps", 1.0, 3600.0, "90.0", "Yaw rate limit of the setpoints"),
       // mapping
       real("mapping.keyframe_period_s", 0.05, 60.0, "1.0",

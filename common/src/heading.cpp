@@ -20,8 +20,16 @@ double turnTowards(double yaw, double target, double dt, const HeadingParams& pa
 
 double followHeading(double yaw, const Trajectory& trajectory, double t,
                      const Eigen::Vector3d& position, double dt, const HeadingParams& params) {
-  const double ahead = std::min(t + params.lookahead_s, trajectory.duration());
-  const Eigen::Vector3d look = trajectory.position(std::max(0.0, ahead)) - position;
+  const double end_s = trajectory.duration();
+  double ahead = std::max(0.0, std::min(t + params.lookahead_s, end_s));
+  Eigen::Vector3d look = trajectory.position(ahead) - position;
+  // Creeping: walk on along the trajectory, in steps of the look-ahead time, to a point far
+  // enough away to show the direction of travel.
+  const double step_s = std::max(0.05, params.lookahead_s);
+  while (look.head<2>().norm() < params.min_lookahead_m && ahead < end_s) {
+    ahead = std::min(ahead + step_s, end_s);
+    look = trajectory.position(ahead) - position;
+  }
   if (look.head<2>().norm() < 0.05) return yaw;
   return turnTowards(yaw, std::atan2(look.y(), look.x()), dt, params);
 }

@@ -18,6 +18,7 @@ SimParams loadSimParams(const Config& c) {
   p.max_yaw_rate_dps = c.getDouble("sim.max_yaw_rate_dps");
   p.yaw_time_constant_s = c.getDouble("sim.yaw_time_constant_s");
   p.yaw_lookahead_s = c.getDouble("sim.yaw_lookahead_s");
+  p.yaw_lookahead_min_m = c.getDouble("sim.yaw_lookahead_min_m");
   p.free_ray_stride = c.getInt("sim.free_ray_stride");
   p.depth.width_px = c.getInt("sim.depth.width_px");
   p.depth.height_px = c.getInt("sim.depth.height_px");

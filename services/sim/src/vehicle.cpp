@@ -15,7 +15,8 @@ double toSeconds(int64_t us) {
 Vehicle::Vehicle(const Eigen::Vector3d& start, double yaw_rad, int64_t now_utime,
                  const SimParams& params)
     : params_(params),
-      heading_{params.yaw_lookahead_s, params.yaw_time_constant_s, params.max_yaw_rate_dps},
+      heading_{params.yaw_lookahead_s, params.yaw_time_constant_s, params.max_yaw_rate_dps,
+               params.yaw_lookahead_min_m},
       now_(now_utime),
       hold_(start),
       yaw_(wrapAngle(yaw_rad)) {

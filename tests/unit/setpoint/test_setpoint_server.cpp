@@ -197,3 +197,14 @@ TEST(SetpointServer, YawTurnsTowardsTheDirectionOfFlightWithinItsRateLimit) {
   }
   EXPECT_NEAR(yaw, M_PI / 2, 1e-6);  // along +y after 1 s of turning at 90 deg/s
 }
+
+TEST(SetpointServer, YawFacesTheWayOfAVehicleCreepingTooSlowlyForTheLookAheadTime) {
+  // 0.04 m/s: the point yaw_lookahead_s ahead is 2 cm away, too near to give a direction; the
+  // yaw still turns to +y, so the camera looks where the vehicle creeps.
+  SetpointServer s(params());
+  s.vehicleAt(Vector3d(0, 0, 1), 0.0);
+  s.commit(mmh::test::line(Vector3d(0, 0, 1), Vector3d(0, 0.04, 0), 20.0), at(0), 1, at(0));
+  double yaw = 0.0;
+  for (int64_t t = at(0); t <= at(3.0); t += kPeriod) yaw = s.sample(t)->yaw_rad;
+  EXPECT_NEAR(yaw, M_PI / 2, 1e-6);
+}

@@ -167,3 +167,23 @@ TEST(Vehicle, YawTurnsTowardsTheFlightDirectionWithinTheRateLimit) {
   const Eigen::Quaterniond q = v.orientation();
   EXPECT_NEAR((q * Vector3d::UnitX() - Vector3d::UnitY()).norm(), 0.0, 1e-3);
 }
+
+TEST(Vehicle, YawFacesTheWayOfACreepWhoseLookAheadPointIsTooNear) {
+  // At 0.05 m/s the point yaw_lookahead_s ahead is 2.5 cm away: too near to show a direction.
+  // The camera must still turn to where the vehicle goes, or it creeps into what it never saw.
+  const Vector3d start(0, 0, 1);
+  mmh::sim::SimParams params;
+  Vehicle creeping(start, 0.0, kT0, params);
+  params.yaw_lookahead_min_m = 0.0;
+  Vehicle looking_only_by_time(start, 0.0, kT0, params);
+  const auto creep = mmh::test::line(start, Vector3d(0, 0.05, 0), 20.0);
+  creeping.commit(creep, kT0, 1);
+  looking_only_by_time.commit(creep, kT0, 1);
+  std::vector<FlownPart> flown;
+  for (int i = 1; i <= 300; ++i) {
+    creeping.advance(kT0 + i * kStep, &flown);
+    looking_only_by_time.advance(kT0 + i * kStep, &flown);
+  }
+  EXPECT_NEAR(creeping.yaw(), M_PI / 2, 1e-3);
+  EXPECT_DOUBLE_EQ(looking_only_by_time.yaw(), 0.0);
+}

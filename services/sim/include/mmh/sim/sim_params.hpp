@@ -39,10 +39,12 @@ struct SimParams {
   double goal_relocate_radius_m = 1.5;
   bool stop_on_collision = true;  // finished() once the vehicle touched an obstacle
   // Yaw follows the direction of flight: the direction to the point yaw_lookahead_s ahead on the
-  // trajectory, through a first-order lag with yaw_time_constant_s, limited to max_yaw_rate_dps.
+  // trajectory (or a later one yaw_lookahead_min_m away), through a first-order lag with
+  // yaw_time_constant_s, limited to max_yaw_rate_dps.
   double max_yaw_rate_dps = 120.0;
   double yaw_time_constant_s = 0.2;
   double yaw_lookahead_s = 0.5;
+  double yaw_lookahead_min_m = 0.2;
   // No-return rays: every free_ray_stride-th ray that hit nothing is sent as a point beyond the
   // sensor range (0 = none), so that the mapping clears free space along it.
   int free_ray_stride = 1;
