@@ -27,6 +27,7 @@ EamParams loadEamParams(const Config& config) {
   p.lambda_feasibility = config.getDouble("eam.lambda_feasibility");
   p.clearance_m = config.getDouble("eam.clearance_m");
   p.geofence_margin_m = config.getDouble("eam.geofence_margin_m");
+  p.arbiter_geofence_tolerance_m = config.getDouble("arbiter.geofence_tolerance_m");
   p.window_margin_s = config.getDouble("eam.window_margin_s");
   p.guide_warm_start = config.getBool("eam.guide_warm_start");
   p.merge_gap_s = config.getDouble("eam.merge_gap_s");

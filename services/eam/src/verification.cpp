@@ -1,6 +1,7 @@
 #include "mmh/eam/verification.hpp"
 
 #include "mmh/common/collision_check.hpp"
+#include "mmh/common/geofence.hpp"
 #include "mmh/common/trajectory_verifier.hpp"
 
 #include <algorithm>
@@ -29,8 +30,10 @@ Verification verifyTrajectory(const Trajectory& traj, const VoxelGrid& grid,
   o.maxima = MaximaMethod::kCubicClosedForm;
   o.limits_after_samples = true;
   o.check_geofence = true;
-  o.geofence_min = params.geofence_min;
-  o.geofence_max = params.geofence_max;
+  const Box fence = fenceForStart(params.geofence_min, params.geofence_max, start.position,
+                                  params.arbiter_geofence_tolerance_m);
+  o.geofence_min = fence.lo;
+  o.geofence_max = fence.hi;
   o.geofence_tol_m = 0.01;
   o.grid = &grid;
   o.check_inflated = true;

@@ -44,6 +44,7 @@ SomParams loadSomParams(const Config& c) {
   k.junction_margin_m = c.getDouble("som.corridor_junction_margin_m");
   k.max_polytopes = c.getInt("som.corridor_max_polytopes");
   p.arbiter_check_inflation_m = c.getDouble("arbiter.check_inflation_m");
+  p.arbiter_geofence_tolerance_m = c.getDouble("arbiter.geofence_tolerance_m");
 
   OptimizerParams& o = p.optimizer;
   o.time_weight = c.getDouble("som.time_weight");

@@ -102,11 +102,13 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
       !start.acceleration.allFinite() || !target.allFinite())
     return finish(PlanStatus::kBadInput, "start state or target is not finite");
   if (!grid.valid()) return finish(PlanStatus::kNoMap, "no map");
-  const Eigen::Vector3d bound_lo = p.geofence_min.cwiseMax(grid.minCorner());
-  const Eigen::Vector3d bound_hi = p.geofence_max.cwiseMin(grid.maxCorner());
+  const Box fence =
+      fenceForStart(p.geofence_min, p.geofence_max, start.position, p.arbiter_geofence_tolerance_m);
+  const Eigen::Vector3d bound_lo = fence.lo.cwiseMax(grid.minCorner());
+  const Eigen::Vector3d bound_hi = fence.hi.cwiseMin(grid.maxCorner());
   if (!grid.containsPoint(start.position) || !insideBox(start.position, bound_lo, bound_hi))
     return finish(PlanStatus::kBadInput, "start outside the geofence or the map window");
-  if (!grid.containsPoint(target) || !insideBox(target, bound_lo, bound_hi))
+  if (!grid.containsPoint(target) || !insideBox(target, p.geofence_min, p.geofence_max))
     return finish(PlanStatus::kTargetOutOfBounds, "target outside the geofence or the map window");
   const double tol = 1.0 + p.verify.limit_tolerance;
   if (start.velocity.norm() > p.max_vel_mps * tol ||

@@ -402,6 +402,29 @@ TEST(EamPlanner, CollisionFreeReferenceNeedsNoPairs) {
     EXPECT_LT((r.trajectory.position(s) - req.reference.position(s)).norm(), 0.01);
 }
 
+TEST(EamPlanner, AStartJustAboveTheGeofenceIsAnsweredWithTheWayBackIn) {
+  // A stop the arbiter accepted within its geofence tolerance left the vehicle 2 cm above the
+  // ceiling (2.7 m), still drifting up: the answer goes back inside, no farther out than the
+  // tolerance. Without the tolerance (the fence alone) the same request has no answer.
+  mmh::VoxelGrid g = eam_test::freeGrid();
+  eam_test::addPillar(g, 5.0, 0.05, 0.5);
+  auto p = params();
+  PlanRequest req;
+  req.start.position = Vector3d(0.0, 0.0, 2.72);
+  req.start.velocity = Vector3d(1.0, 0.0, 0.005);
+  req.target = Vector3d(10.0, 0.0, 1.2);
+  const PlanResult r = mmh::eam::Planner(p).plan(g, req);
+  expectValid(g, req, r, p);
+  const mmh::Trajectory& t = r.trajectory;
+  for (double s = 0.0; s <= t.duration(); s += 1e-3) {
+    ASSERT_LE(t.position(s).z(), p.geofence_max.z() + p.arbiter_geofence_tolerance_m) << "at " << s;
+  }
+  p.arbiter_geofence_tolerance_m = 0.0;
+  const PlanResult fence_only = mmh::eam::Planner(p).plan(g, req);
+  EXPECT_FALSE(fence_only.ok);
+  EXPECT_EQ(fence_only.reason, PlanStatus::kVerify) << fence_only.detail;
+}
+
 TEST(EamPlanner, BadInputGetsAReasonAndNoCrash) {
   mmh::VoxelGrid g = eam_test::freeGrid();
   eam_test::addPillar(g, 5.0, 0.0, 0.5);

@@ -28,8 +28,9 @@ mmh::som::SomParams testParams() {
   return p;
 }
 
-void expectVerified(const som_test::World& w, const mmh::KinematicState& start,
-                    const mmh::som::PlanOutput& out) {
+// Verified, and inside the geofence band z in [0.3, ceiling_m] up to 2 cm.
+void expectVerifiedWithin(const som_test::World& w, const mmh::KinematicState& start,
+                          const mmh::som::PlanOutput& out, double ceiling_m) {
   ASSERT_EQ(out.status, PlanStatus::kOk) << out.detail;
   const mmh::Trajectory& t = out.trajectory;
   const double v_max = 3.0, a_max = 2.0;
@@ -50,7 +51,7 @@ void expectVerified(const som_test::World& w, const mmh::KinematicState& start,
     for (const auto& poly : out.corridor.polytopes) best = std::min(best, poly.maxViolation(p));
     if (best > 0.02) ++outside;
     EXPECT_GE(p.z(), 0.3 - 0.02);
-    EXPECT_LE(p.z(), 2.7 + 0.02);
+    EXPECT_LE(p.z(), ceiling_m + 0.02);
   }
   EXPECT_EQ(outside, 0);
   // Flight time is within reach of the rest-to-rest bound on the planned path (which ignores
@@ -64,6 +65,11 @@ void expectVerified(const som_test::World& w, const mmh::KinematicState& start,
   EXPECT_GT(tm.total.cpu_us, 0.0);
   EXPECT_GE(tm.total.wall_us, tm.astar.wall_us + tm.corridor.wall_us + tm.optimize.wall_us);
   EXPECT_GT(tm.astar.cpu_us + tm.corridor.cpu_us + tm.optimize.cpu_us, 0.0);
+}
+
+void expectVerified(const som_test::World& w, const mmh::KinematicState& start,
+                    const mmh::som::PlanOutput& out) {
+  expectVerifiedWithin(w, start, out, 2.7);
 }
 
 using som_test::atRest;
@@ -212,12 +218,27 @@ TEST(SomPlanner, OtherRefusals) {
   EXPECT_NE(planner.plan(*w.grid, moving, w.start).status, PlanStatus::kStartEqualsTarget);
 }
 
+TEST(SomPlanner, AStartJustAboveTheGeofencePlansItsWayBackIn) {
+  // A stop the arbiter accepted within its geofence tolerance (5 cm) left the vehicle 2 cm above
+  // the ceiling (2.7 m), drifting up at 5 mm/s: the answer comes back inside and never goes
+  // farther out than the tolerance. 10 cm above is beyond what the arbiter accepts: refused.
+  const auto w = som_test::pillars();
+  mmh::som::Planner planner(testParams());
+  mmh::KinematicState start = atRest(Vector3d(0.0, 0.0, 2.72));
+  start.velocity = Vector3d(0.5, 0.0, 0.005);
+  const auto out = planner.plan(*w.grid, start, w.target);
+  expectVerifiedWithin(w, start, out, 2.7 + 0.05);
+  EXPECT_LE(out.trajectory.position(out.trajectory.duration()).z(), 2.7);
+  EXPECT_EQ(planner.plan(*w.grid, atRest(Vector3d(0.0, 0.0, 2.8)), w.target).status,
+            PlanStatus::kBadInput);
+}
+
 TEST(SomPlanner, ParamsFromConfig) {
   const auto config = mmh::Config::fromString(R"(
 vehicle: {radius_m: 0.15, max_vel_mps: 2.5, max_acc_mps2: 1.5}
 geofence: {min_m: [-10, -10, 0.5], max_m: [10, 10, 2.5]}
 som: {time_weight: 500.0, samples_per_piece: 6, corridor_iterations: 3}
-arbiter: {check_inflation_m: 0.2}
+arbiter: {check_inflation_m: 0.2, geofence_tolerance_m: 0.04}
 )");
   const auto p = mmh::som::loadSomParams(config);
   EXPECT_EQ(p.max_vel_mps, 2.5);
@@ -227,6 +248,7 @@ arbiter: {check_inflation_m: 0.2}
   EXPECT_EQ(p.optimizer.samples_per_piece, 6);
   EXPECT_EQ(p.corridor.iterations, 3);
   EXPECT_EQ(p.arbiter_check_inflation_m, 0.2);  // the arbiter's, shared
+  EXPECT_EQ(p.arbiter_geofence_tolerance_m, 0.04);
   EXPECT_EQ(p.optimizer.max_evaluations, mmh::som::OptimizerParams().max_evaluations);
   EXPECT_THROW(mmh::som::loadSomParams(mmh::Config::fromString(R"(
 vehicle: {max_vel_mps: 3.0, max_acc_mps2: 2.0}

@@ -25,6 +25,9 @@ struct EamParams {
   // The optimiser's walls stand this far inside the geofence: its penalty is soft, and a curve
   // pressed against a wall ends a few millimetres beyond it.
   double geofence_margin_m = 0.05;
+  // The excursion beyond the geofence the arbiter accepts (arbiter.geofence_tolerance_m): a start
+  // that far out may be answered with a way back in (fenceForStart).
+  double arbiter_geofence_tolerance_m = 0.05;
   // Narrow-space test on the A* path (awareness.narrow_probe_dist_m, shared with awareness).
   double narrow_probe_dist_m = 0.8;
 

@@ -101,6 +101,9 @@ struct SomParams {
   // The arbiter's check inflation (arbiter.check_inflation_m): an answer that enters a cell it
   // blocks is planned again with such cells kept out of the corridor (0: never).
   double arbiter_check_inflation_m = 0.25;
+  // The excursion beyond the geofence the arbiter accepts (arbiter.geofence_tolerance_m): a start
+  // that far out plans its way back in (fenceForStart).
+  double arbiter_geofence_tolerance_m = 0.05;
   // A fast start whose A* path turns away sharply also tries a path that first goes on ahead
   // (lead_point.hpp); the faster verified trajectory is the answer.
   LeadPointParams lead;
