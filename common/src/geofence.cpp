@@ -18,12 +18,11 @@ bool insideGeofence(const Geofence& fence, const Eigen::Vector3d& p) {
   return insideBox(p, fence.min_m, fence.max_m);
 }
 
-Box fenceForStart(const Eigen::Vector3d& min_m, const Eigen::Vector3d& max_m,
-                  const Eigen::Vector3d& start, double tolerance_m) {
-  const Eigen::Vector3d grow = Eigen::Vector3d::Constant(tolerance_m);
-  if (insideBox(start, min_m, max_m) || !insideBox(start, min_m - grow, max_m + grow))
-    return {min_m, max_m};
-  return {min_m - grow, max_m + grow};
+Geofence fenceForStart(const Geofence& fence, const Eigen::Vector3d& start, double tolerance_m) {
+  const Geofence grown{fence.min_m - Eigen::Vector3d::Constant(tolerance_m),
+                       fence.max_m + Eigen::Vector3d::Constant(tolerance_m)};
+  if (insideGeofence(fence, start) || !insideGeofence(grown, start)) return fence;
+  return grown;
 }
 
 std::string geofenceViolation(const Geofence& fence, const Eigen::Vector3d& p,

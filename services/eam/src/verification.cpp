@@ -30,10 +30,10 @@ Verification verifyTrajectory(const Trajectory& traj, const VoxelGrid& grid,
   o.maxima = MaximaMethod::kCubicClosedForm;
   o.limits_after_samples = true;
   o.check_geofence = true;
-  const Box fence = fenceForStart(params.geofence_min, params.geofence_max, start.position,
-                                  params.arbiter_geofence_tolerance_m);
-  o.geofence_min = fence.lo;
-  o.geofence_max = fence.hi;
+  const Geofence fence = fenceForStart(Geofence{params.geofence_min, params.geofence_max},
+                                       start.position, params.arbiter_geofence_tolerance_m);
+  o.geofence_min = fence.min_m;
+  o.geofence_max = fence.max_m;
   o.geofence_tol_m = 0.01;
   o.grid = &grid;
   o.check_inflated = true;

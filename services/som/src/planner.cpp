@@ -102,10 +102,10 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
       !start.acceleration.allFinite() || !target.allFinite())
     return finish(PlanStatus::kBadInput, "start state or target is not finite");
   if (!grid.valid()) return finish(PlanStatus::kNoMap, "no map");
-  const Box fence =
-      fenceForStart(p.geofence_min, p.geofence_max, start.position, p.arbiter_geofence_tolerance_m);
-  const Eigen::Vector3d bound_lo = fence.lo.cwiseMax(grid.minCorner());
-  const Eigen::Vector3d bound_hi = fence.hi.cwiseMin(grid.maxCorner());
+  const Geofence fence = fenceForStart(Geofence{p.geofence_min, p.geofence_max}, start.position,
+                                       p.arbiter_geofence_tolerance_m);
+  const Eigen::Vector3d bound_lo = fence.min_m.cwiseMax(grid.minCorner());
+  const Eigen::Vector3d bound_hi = fence.max_m.cwiseMin(grid.maxCorner());
   if (!grid.containsPoint(start.position) || !insideBox(start.position, bound_lo, bound_hi))
     return finish(PlanStatus::kBadInput, "start outside the geofence or the map window");
   if (!grid.containsPoint(target) || !insideBox(target, p.geofence_min, p.geofence_max))

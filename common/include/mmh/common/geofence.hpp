@@ -22,16 +22,12 @@ bool insideBox(const Eigen::Vector3d& p, const Eigen::Vector3d& lo, const Eigen:
 
 bool insideGeofence(const Geofence& fence, const Eigen::Vector3d& p);
 
-// The box a trajectory from `start` must keep to: the fence [min_m, max_m], or, for a start
-// outside it by no more than tolerance_m on every axis, the fence grown by tolerance_m. The
-// arbiter accepts trajectories that leave the fence by up to its arbiter.geofence_tolerance_m, so
-// a vehicle may come to rest a little outside; from there a planner must still find the way
-// back in. A start farther out keeps the fence (no plan can start there).
-struct Box {
-  Eigen::Vector3d lo, hi;
-};
-Box fenceForStart(const Eigen::Vector3d& min_m, const Eigen::Vector3d& max_m,
-                  const Eigen::Vector3d& start, double tolerance_m);
+// The box a trajectory from `start` must keep to: the fence, or, for a start outside it by no
+// more than tolerance_m on every axis, the fence grown by tolerance_m. The arbiter accepts
+// trajectories that leave the fence by up to its arbiter.geofence_tolerance_m, so a vehicle may
+// come to rest a little outside; from there a planner must still find the way back in. A start
+// farther out keeps the fence (no plan can start there).
+Geofence fenceForStart(const Geofence& fence, const Eigen::Vector3d& start, double tolerance_m);
 
 // Empty when p lies inside the fence; else a sentence for the user naming `what` (e.g. "the
 // goal"), its coordinates, the axis that is out and the keys geofence.min_m / geofence.max_m.
