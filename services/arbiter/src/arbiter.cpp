@@ -203,6 +203,13 @@ Eigen::Vector3d Arbiter::vehiclePosition() const {
   return odometry_ ? odometry_->position : Eigen::Vector3d::Zero();
 }
 
+int64_t Arbiter::takeOverUtime(int64_t now) const {
+  const int64_t after_lead = now + static_cast<int64_t>(budget_.replan_lead_s * 1e6);
+  // The lead may have shrunk since the committed trajectory was placed; it has been sent, so
+  // what follows it can only take over from its start on.
+  return hasCommitted() ? std::max(after_lead, committed_.start_utime) : after_lead;
+}
+
 const Trajectory& Arbiter::flownTrajectory() const {
   return committed_.backup ? *committed_.backup : committed_.trajectory;
 }
@@ -416,7 +423,7 @@ void Arbiter::evaluate(int64_t now) {
   // of the obstacle they keep failing at.
   std::optional<Eigen::Vector3d> back_off;
   if (grid_ && backOffDue(trigger, stuck, since_back_off, params_)) {
-    const int64_t start_utime = now + static_cast<int64_t>(budget_.replan_lead_s * 1e6);
+    const int64_t start_utime = takeOverUtime(now);
     back_off = progress_.backOffPoint(*grid_, stateAt(start_utime).position,
                                       params_.backoff_min_distance_m,
                                       params_.inflation_m + params_.backoff_clearance_m);
@@ -444,7 +451,7 @@ void Arbiter::slowDownIfTooFast(int64_t now) {
   // Not over a commit still to be sent; and a round in flight may still commit its answer, which
   // starts in the state of the trajectory it was asked from: the slowdown may only begin after it.
   if (commit_) return;
-  const int64_t start = now + static_cast<int64_t>(budget_.replan_lead_s * 1e6);
+  const int64_t start = takeOverUtime(now);
   if (round_ && start < round_->start.start_utime) return;
   const Trajectory slow =
       makeSlowdownTrajectory(committed_.trajectory, (start - committed_.start_utime) * kUs,
@@ -493,7 +500,7 @@ void Arbiter::startRound(Trigger trigger, const std::vector<Mode>& modes, int64_
   threat_note_.clear();
   round.threat_seen_utime = threat_seen_utime_;
   threat_seen_utime_.reset();
-  round.start.start_utime = now + static_cast<int64_t>(budget_.replan_lead_s * 1e6);
+  round.start.start_utime = takeOverUtime(now);
   round.deadline_utime = now + static_cast<int64_t>(budget_.answer_deadline_s * 1e6);
   round.start.state = stateAt(round.start.start_utime);
   // A start faster than the speed limit may keep its speed (the planners could not start
@@ -609,7 +616,7 @@ void Arbiter::commit(const Trajectory& trajectory, int64_t start_utime, Mode mod
 
 void Arbiter::commitStop(int64_t now, const std::string& why, Trigger trigger,
                          const Trajectory* given) {
-  const int64_t start = now + static_cast<int64_t>(budget_.replan_lead_s * 1e6);
+  const int64_t start = takeOverUtime(now);
   const Trajectory stop =
       given ? *given
       : hasCommitted()
@@ -816,7 +823,7 @@ void Arbiter::swerveIfStopMeetsObstacle(int64_t now, const std::string& notes, T
   if (!hasCommitted() || committed_.mode != Mode::kStop || commit_ || round_ ||
       !collisionAhead(now))
     return;
-  const int64_t start = now + static_cast<int64_t>(budget_.replan_lead_s * 1e6);
+  const int64_t start = takeOverUtime(now);
   const double t0 = (start - committed_.start_utime) * kUs;
   if (t0 >= committed_.trajectory.duration()) return;
   // Braking along the stop under way, or straight, meets the obstacle as the stop does: a stop
@@ -884,7 +891,7 @@ void Arbiter::setBackup(double backup_stop_s) {
 
 void Arbiter::flyOnWithBackupStop(int64_t now, Trigger trigger) {
   if (!hasCommitted() || committed_.mode == Mode::kStop || commit_ || round_ || !grid_) return;
-  const int64_t start = now + static_cast<int64_t>(budget_.replan_lead_s * 1e6);
+  const int64_t start = takeOverUtime(now);
   const Trajectory& committed = committed_.trajectory;
   const double t0 = (start - committed_.start_utime) * kUs;
   // A backup stop about to begin is not moved: the vehicle brakes on it.

@@ -1425,6 +1425,37 @@ TEST_F(ArbiterRules, LateAnswersLengthenTheBudgetUntilTheLoadGoes) {
   EXPECT_EQ(a->latencyBudget().replan_lead_s, params_.replan_lead_s);
 }
 
+// A round answered late lengthens the replan lead, so its answer starts far ahead; when the late
+// answer leaves the latency window before that start, the lead shrinks. A stop decided then must
+// still take over where the sent trajectory begins, not before it (the vehicle would jump).
+TEST_F(ArbiterRules, NothingTakesOverBeforeTheStartOfTheTrajectoryItFollows) {
+  params_.latency_window_s = 0.15;
+  params_.stale_map_s = 0.05;
+  auto a = started(Policy::kMmh);
+  a->onAnswer(okAnswer(a->takeRequests().at(0)), at(0.12));  // late: not committed
+  EXPECT_FALSE(a->takeCommit());
+  a->onMapUpdated(grid_, ++map_seq_, at(0.25), at(0.25));
+  const std::vector<PlanRequestOut> retry = a->takeRequests();
+  ASSERT_EQ(retry.size(), 1u);
+  a->onAnswer(okAnswer(retry[0]), at(0.26));
+  const std::optional<CommitOut> sent = a->takeCommit();
+  ASSERT_TRUE(sent.has_value());
+  ASSERT_EQ(sent->start_utime, at(0.44));  // the lengthened lead
+
+  // The late answer has left the window: the configured lead returns before the sent start.
+  a->onMapUpdated(grid_, ++map_seq_, at(0.30), at(0.30));
+  ASSERT_EQ(a->latencyBudget().replan_lead_s, params_.replan_lead_s);
+  a->onOdometry(rest(Vector3d(0, 0, 1.2)), at(0.36));  // the map is stale now
+  const std::optional<CommitOut> stop = a->takeCommit();
+  ASSERT_TRUE(stop.has_value());
+  ASSERT_EQ(stop->mode, Mode::kStop);
+  EXPECT_GE(stop->start_utime, sent->start_utime);
+  const KinematicState there =
+      sent->trajectory.state((stop->start_utime - sent->start_utime) * 1e-6);
+  EXPECT_LT((stop->trajectory.state(0.0).position - there.position).norm(), 1e-9);
+  EXPECT_LT((stop->trajectory.state(0.0).velocity - there.velocity).norm(), 1e-9);
+}
+
 TEST_F(ArbiterRules, AnswersLaterThanTheFullSpeedDeadlineSlowTheVehicleUntilTheLoadGoes) {
   auto a = started(Policy::kMmh);
   // A first plan that reaches nearly 3 m/s, flown to its fastest part.

@@ -206,6 +206,9 @@ class Arbiter {
   StopView stopView(int64_t now, StopCause cause) const;
 
   void evaluate(int64_t now);
+  // When a trajectory decided at `now` takes over: after the replan lead, and never before the
+  // committed trajectory's own start.
+  int64_t takeOverUtime(int64_t now) const;
   // The latency budget lowered the speed limit below the committed trajectory's speed: commit
   // that trajectory slowed down along its path (when the slowed one is collision-free), also
   // while a round is in flight (whose answer, if committed, starts before the slowdown).
