@@ -259,8 +259,12 @@ StopCondition Arbiter::noHiddenFaceBeside() const {
   return [this](const Trajectory& stop) { return !touchesHiddenFace(stop, *grid_, params_); };
 }
 
+Geofence Arbiter::fenceFrom(const Eigen::Vector3d& start) const {
+  return fenceForStart(geofence(), start, params_.geofence_tolerance_m);
+}
+
 Trajectory Arbiter::stopAlongCommitted(double t0_s, bool may_swerve) const {
-  const Geofence fence = geofence();
+  const Geofence fence = fenceFrom(flownTrajectory().position(t0_s));
   return chooseStoppingTrajectory(grid_, flownTrajectory(), t0_s, params_.max_acc_mps2,
                                   params_.max_vel_mps, params_.check_inflation_m,
                                   stopTouchDistance(), may_swerve, &fence, noHiddenFaceBeside());
@@ -770,7 +774,7 @@ bool Arbiter::retraceOutOfTheSpot(const Round& round, DecisionOut& d) {
     min_distance_m = std::min(min_distance_m, occupiedDistance(*grid_, flown, min_distance_m));
   }
   if (!way || !keepsOffOccupied(*grid_, *way, min_distance_m, params_.check_step_s)) return false;
-  const Geofence fence = geofence();
+  const Geofence fence = fenceFrom(start.position);
   for (double s = 0.0; s <= way->duration(); s += params_.check_step_s) {
     if (!insideGeofence(fence, way->position(s))) return false;
   }
@@ -830,7 +834,7 @@ void Arbiter::swerveIfStopMeetsObstacle(int64_t now, const std::string& notes, T
   // clear of it is worth committing, and so is one that keeps the airframe off the occupied cells
   // that the stop under way would touch; else the modes go on trying.
   const Trajectory stop = stopAlongCommitted(t0);
-  const Geofence fence = geofence();
+  const Geofence fence = fenceFrom(stop.position(0.0));
   std::string how = "swerving round it";
   if (!isClearStop(*grid_, stop, params_.check_inflation_m, &fence, noHiddenFaceBeside())) {
     const double touch_m = stopTouchDistance();
@@ -856,7 +860,7 @@ Trajectory Arbiter::backupAlong(const Trajectory& path, double tb) const {
 
 std::optional<double> Arbiter::latestBackupStopS(const Trajectory& path, double horizon_s,
                                                  double margin_s) const {
-  const Geofence fence = geofence();
+  const Geofence fence = fenceFrom(path.position(0.0));
   const StopCondition no_hidden_face = noHiddenFaceBeside();
   auto clear = [&](const Trajectory& t) {
     return isClearStop(*grid_, t, params_.check_inflation_m, &fence, no_hidden_face);

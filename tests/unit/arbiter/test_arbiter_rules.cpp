@@ -716,14 +716,28 @@ TEST_F(ArbiterRules, AFailedRoundWithAFarDangerSlowsTheCommittedPathWhileTheStop
 TEST_F(ArbiterRules, AFailedRoundWithAFarDangerCommitsThePathUpToABackupStopClearOfIt) {
   params_.stale_map_s = 10.0;
   params_.defer_far_collisions = false;
-  for (const double ratio : {1.0, 0.7}) {
-    SCOPED_TRACE("ratio " + std::to_string(ratio));
+  // Also with the vehicle 1-3 cm above the fence's ceiling, within the tolerance that answers are
+  // accepted with (so an accepted answer may leave it there): the backup stop keeps to that band.
+  struct Case {
+    double ratio;
+    bool above_fence;
+  };
+  for (const Case each : {Case{1.0, false}, Case{0.7, false}, Case{1.0, true}}) {
+    const double ratio = each.ratio;
+    SCOPED_TRACE("ratio " + std::to_string(ratio) + (each.above_fence ? ", above the fence" : ""));
     params_.failed_round_speed_ratio = ratio;
+    params_.geofence_max_m.z() = each.above_fence ? 1.17 : 2.7;
+    goal_.z() = each.above_fence ? 1.15 : 1.2;
+    // The test's first plan (0.8 s per metre) is not a slow one to be replanned at once.
+    params_.slow_plan_ratio = each.above_fence ? 3.0 : ArbiterParams{}.slow_plan_ratio;
     clearGrid();
     auto a = started(Policy::kMmh);
     Trajectory path;
     int64_t path_start = 0;
     const double t1 = failARoundBeforeAFarPillar(*a, &path, &path_start);
+    if (each.above_fence) {
+      ASSERT_GT(path.position((at(t1) - path_start) * 1e-6).z(), params_.geofence_max_m.z());
+    }
     ASSERT_TRUE(
         mmh::firstCollisionTime(grid_, path, (at(t1) - path_start) * 1e-6, path.duration()));
     auto commit = a->takeCommit();
@@ -746,6 +760,10 @@ TEST_F(ArbiterRules, AFailedRoundWithAFarDangerCommitsThePathUpToABackupStopClea
     const double s0 = (commit->start_utime - path_start) * 1e-6;
     EXPECT_LT((backup.state(0.0).velocity - path.velocity(s0)).norm(), 1e-6);
     EXPECT_LT(farthestFromPath(backup, path, s0), 0.02);  // braking along it, not swerving
+    for (double s = 0.0; s <= backup.duration(); s += 0.01) {
+      EXPECT_LE(backup.position(s).z(),
+                params_.geofence_max_m.z() + params_.geofence_tolerance_m + 1e-9);
+    }
     // No mode answers again: each failed round moves the backup stop on as far as it stays
     // clear, every trajectory the vehicle is sent starts where it is and ends at rest clear of
     // the pillar; then it brakes on the last one, without a new commit, and a decision says so.
@@ -920,59 +938,73 @@ TEST_F(ArbiterRules, AStuckVehicleBacksOffAskingEveryModeOfTheChainAtOnce) {
 // vehicle), it flies back the way it came, slowly, to the back-off point, and only then do the
 // modes plan again.
 TEST_F(ArbiterRules, ABackOffNoModeAnswersIsFlownBackTheWayTheVehicleCame) {
-  double t1 = 0.0;
-  auto a = stuckBeforeAPillar(&t1);
-  std::vector<Vector3d> flown;
-  std::optional<CommitOut> retrace;
-  Vector3d back_off_target = Vector3d::Zero();
-  double t = t1;
-  for (; t < t1 + 10.0 && !retrace; t += 0.01) {
-    const int64_t now = at(t);
-    if (std::lround(t * 100) % 10 == 0) a->onMapUpdated(grid_, ++map_seq_, now, now);
-    const KinematicState s = a->committed().state((now - a->committedStartUtime()) * 1e-6);
-    flown.push_back(s.position);
-    a->onOdometry(s, now);
-    const std::vector<PlanRequestOut> round = a->takeRequests();
-    if (a->counters().back_offs > 0 && !round.empty()) back_off_target = round[0].target;
-    for (const auto& r : round) a->onAnswer(failedAnswer(r), now + 1000);
-    if (auto c = a->takeCommit(); c && c->mode == Mode::kNone) retrace = c;
+  // Also with the vehicle 1-3 cm above the fence's ceiling, within the tolerance that answers are
+  // accepted with (an accepted answer may leave it there): the way back keeps to that band.
+  for (const bool above_fence : {false, true}) {
+    SCOPED_TRACE(above_fence ? "above the fence" : "inside the fence");
+    clearGrid();
+    params_.geofence_max_m.z() = above_fence ? 1.17 : 2.7;
+    goal_.z() = above_fence ? 1.15 : 1.2;
+    // The test's first plan (0.8 s per metre) is not a slow one to be replanned at once.
+    params_.slow_plan_ratio = above_fence ? 3.0 : ArbiterParams{}.slow_plan_ratio;
+    double t1 = 0.0;
+    auto a = stuckBeforeAPillar(&t1);
+    std::vector<Vector3d> flown;
+    std::optional<CommitOut> retrace;
+    Vector3d back_off_target = Vector3d::Zero();
+    double t = t1;
+    for (; t < t1 + 10.0 && !retrace; t += 0.01) {
+      const int64_t now = at(t);
+      if (std::lround(t * 100) % 10 == 0) a->onMapUpdated(grid_, ++map_seq_, now, now);
+      const KinematicState s = a->committed().state((now - a->committedStartUtime()) * 1e-6);
+      flown.push_back(s.position);
+      a->onOdometry(s, now);
+      const std::vector<PlanRequestOut> round = a->takeRequests();
+      if (a->counters().back_offs > 0 && !round.empty()) back_off_target = round[0].target;
+      for (const auto& r : round) a->onAnswer(failedAnswer(r), now + 1000);
+      if (auto c = a->takeCommit(); c && c->mode == Mode::kNone) retrace = c;
+    }
+    ASSERT_TRUE(retrace.has_value()) << "no retrace";
+    if (above_fence) {
+      EXPECT_GT(retrace->trajectory.position(0.0).z(), params_.geofence_max_m.z());
+    }
+    EXPECT_EQ(a->counters().retraces, 1);
+    EXPECT_GE(a->counters().back_offs, 1);
+    // From rest (a vehicle still braking would first run on towards what it is stuck at).
+    EXPECT_LE(retrace->trajectory.velocity(0.0).norm(), params_.braking_speed_mps);
+    bool said = false;
+    for (const auto& d : a->takeDecisions())
+      said |= d.detail.find("flying back") != std::string::npos;
+    EXPECT_TRUE(said);
+    // Checked here: from where the vehicle is to the back-off point, at rest there, within the
+    // limits, along positions it flew (every sample near one), clear of the pillar.
+    const Trajectory& way = retrace->trajectory;
+    EXPECT_LT((way.position(way.duration()) - back_off_target).norm(), 1e-9);
+    EXPECT_LT(way.velocity(way.duration()).norm(), 1e-9);
+    EXPECT_LE(way.maxSpeed(), params_.max_vel_mps);
+    EXPECT_LE(way.maxAcceleration(), params_.max_acc_mps2);
+    EXPECT_LT(way.position(way.duration()).x(), way.position(0.0).x() - 1.0);  // back, away
+    for (double u = 0.0; u <= way.duration(); u += 0.05) {
+      double nearest = 1e9;
+      for (const Vector3d& p : flown) nearest = std::min(nearest, (p - way.position(u)).norm());
+      EXPECT_LT(nearest, 0.1) << "at " << u << " s of the way back";
+      EXPECT_GT(mmh::occupiedDistance(grid_, way.position(u), 1.0), 0.4);
+      EXPECT_LE(way.position(u).z(), params_.geofence_max_m.z() + params_.geofence_tolerance_m);
+    }
+    // Flown to its end with no request (no halfway replan from inside the spot), then the modes
+    // are asked again from the back-off point.
+    const double end_s = t + way.duration();
+    std::vector<PlanRequestOut> next;
+    for (; t < end_s + 1.0 && next.empty(); t += 0.01) {
+      const int64_t now = at(t);
+      if (std::lround(t * 100) % 10 == 0) a->onMapUpdated(grid_, ++map_seq_, now, now);
+      a->onOdometry(a->committed().state((now - a->committedStartUtime()) * 1e-6), now);
+      next = a->takeRequests();
+    }
+    ASSERT_FALSE(next.empty());
+    EXPECT_GT(t, end_s - 0.05);
+    EXPECT_LT((next[0].start.position - back_off_target).norm(), 0.05);
   }
-  ASSERT_TRUE(retrace.has_value()) << "no retrace";
-  EXPECT_EQ(a->counters().retraces, 1);
-  EXPECT_GE(a->counters().back_offs, 1);
-  // From rest (a vehicle still braking would first run on towards what it is stuck at).
-  EXPECT_LE(retrace->trajectory.velocity(0.0).norm(), params_.braking_speed_mps);
-  bool said = false;
-  for (const auto& d : a->takeDecisions())
-    said |= d.detail.find("flying back") != std::string::npos;
-  EXPECT_TRUE(said);
-  // Checked here: from where the vehicle is to the back-off point, at rest there, within the
-  // limits, along positions it flew (every sample near one), clear of the pillar.
-  const Trajectory& way = retrace->trajectory;
-  EXPECT_LT((way.position(way.duration()) - back_off_target).norm(), 1e-9);
-  EXPECT_LT(way.velocity(way.duration()).norm(), 1e-9);
-  EXPECT_LE(way.maxSpeed(), params_.max_vel_mps);
-  EXPECT_LE(way.maxAcceleration(), params_.max_acc_mps2);
-  EXPECT_LT(way.position(way.duration()).x(), way.position(0.0).x() - 1.0);  // back, away
-  for (double u = 0.0; u <= way.duration(); u += 0.05) {
-    double nearest = 1e9;
-    for (const Vector3d& p : flown) nearest = std::min(nearest, (p - way.position(u)).norm());
-    EXPECT_LT(nearest, 0.1) << "at " << u << " s of the way back";
-    EXPECT_GT(mmh::occupiedDistance(grid_, way.position(u), 1.0), 0.4);
-  }
-  // Flown to its end with no request (no halfway replan from inside the spot), then the modes
-  // are asked again from the back-off point.
-  const double end_s = t + way.duration();
-  std::vector<PlanRequestOut> next;
-  for (; t < end_s + 1.0 && next.empty(); t += 0.01) {
-    const int64_t now = at(t);
-    if (std::lround(t * 100) % 10 == 0) a->onMapUpdated(grid_, ++map_seq_, now, now);
-    a->onOdometry(a->committed().state((now - a->committedStartUtime()) * 1e-6), now);
-    next = a->takeRequests();
-  }
-  ASSERT_FALSE(next.empty());
-  EXPECT_GT(t, end_s - 0.05);
-  EXPECT_LT((next[0].start.position - back_off_target).norm(), 0.05);
 }
 
 TEST_F(ArbiterRules, UnmappedSpaceWithinStoppingReachAsksARoundThenStopsBeforeIt) {

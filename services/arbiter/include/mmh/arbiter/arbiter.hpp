@@ -307,6 +307,9 @@ class Arbiter {
   // What the vehicle flies: the committed trajectory, or its backup (Committed::backup).
   const Trajectory& flownTrajectory() const;
   Geofence geofence() const { return Geofence{params_.geofence_min_m, params_.geofence_max_m}; }
+  // The box the arbiter's own trajectory from `start` keeps to (fenceForStart): a vehicle left
+  // just outside the fence by an accepted answer still has stops and a way back.
+  Geofence fenceFrom(const Eigen::Vector3d& start) const;
   Eigen::Vector3d vehiclePosition() const;
   void pushDecision(DecisionOut decision);
   void updateLatencyBudget();
