@@ -1,9 +1,10 @@
 // mmh-fault-log-check: reads the LCM log of a fault-injection flight and checks what the fault
-// tests promise: every committed TRAJECTORY takes over the previous one without a jump, no
-// planning mode's trajectory is committed while ODOMETRY is stale, the mission was reached without
-// collision, and the expected ARBITER_STATUS details and HEARTBEAT counters appeared.
-// With --wait-distance D it instead waits (re-reading the growing log) until MISSION_STATUS shows
-// D metres flown, so that a test injects its fault mid-flight whatever the machine's load; with
+// tests promise: every committed TRAJECTORY takes over without a jump from the one it follows (as
+// on the vehicle: the latest sent that starts before it), no planning mode's trajectory is
+// committed while ODOMETRY is stale, the mission was reached without collision, and the expected
+// ARBITER_STATUS details and HEARTBEAT counters appeared. With --wait-distance D it instead waits
+// (re-reading the growing log) until MISSION_STATUS shows D metres flown, so that a test injects
+// its fault mid-flight whatever the machine's load; with
 // --wait-status TEXT, until some ARBITER_STATUS detail contains TEXT (the fault was noticed).
 #include <lcm/lcm-cpp.hpp>
 
@@ -152,8 +153,14 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  std::optional<mmh::Trajectory> previous;
-  int64_t previous_start = 0, previous_id = 0;
+  // What the vehicle holds: sent trajectories by start time. As on the vehicle, a new one replaces
+  // those that would start at or after its own start and takes over from the one before.
+  struct Sent {
+    mmh::Trajectory trajectory;
+    int64_t start_utime = 0, id = 0;
+  };
+  std::vector<Sent> sent;
+  constexpr size_t kSentKept = 16;
   int trajectories = 0, jumps = 0, stale_commits = 0, stops = 0;
   double max_jump_m = 0.0;
   int64_t last_odometry_utime = -1;
@@ -186,23 +193,29 @@ int main(int argc, char** argv) {
                   << " s after the last ODOMETRY\n";
       }
       const mmh::Trajectory t = mmh::fromMsg(m);
-      if (previous) {
-        const double dt = (m.start_utime - previous_start) * 1e-6;
-        const mmh::KinematicState a = previous->state(std::max(0.0, dt));
+      const bool first = sent.empty();
+      while (!sent.empty() && sent.back().start_utime >= m.start_utime) sent.pop_back();
+      if (!first && sent.empty()) {
+        ++jumps;
+        std::cout << "JUMP: trajectory " << m.trajectory_id << " (mode " << int(m.source_mode)
+                  << ") starts before every trajectory sent before it\n";
+      } else if (!first) {
+        const Sent& previous = sent.back();
+        const double dt = (m.start_utime - previous.start_utime) * 1e-6;
+        const mmh::KinematicState a = previous.trajectory.state(dt);
         const mmh::KinematicState b = t.state(0.0);
         const double dp = (a.position - b.position).norm();
         const double dv = (a.velocity - b.velocity).norm();
         max_jump_m = std::max(max_jump_m, dp);
-        if (dt < 0.0 || dp > o.jump_position_m || dv > o.jump_velocity_mps) {
+        if (dp > o.jump_position_m || dv > o.jump_velocity_mps) {
           ++jumps;
           std::cout << "JUMP: trajectory " << m.trajectory_id << " (mode " << int(m.source_mode)
-                    << ") takes over " << previous_id << " at +" << dt << " s with " << dp << " m, "
+                    << ") takes over " << previous.id << " at +" << dt << " s with " << dp << " m, "
                     << dv << " m/s difference\n";
         }
       }
-      previous = t;
-      previous_start = m.start_utime;
-      previous_id = m.trajectory_id;
+      sent.push_back(Sent{t, m.start_utime, m.trajectory_id});
+      if (sent.size() > kSentKept) sent.erase(sent.begin());
     } else if (endsWith(ch, "ARBITER_STATUS")) {
       mmh::arbiter_status_t m;
       if (!decode(*e, &m)) continue;
