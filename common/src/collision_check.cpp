@@ -45,14 +45,21 @@ double occupiedDistance(const VoxelGrid& grid, const Eigen::Vector3d& p, double 
   const double res = grid.resolution();
   const Eigen::Vector3i c = grid.localIndexOf(p);
   const int r = static_cast<int>(std::ceil(limit_m / res)) + 1;
+  // The cube of cells round p, clipped to the window once; its rows are contiguous in memory.
+  Eigen::Vector3i lo, hi;
+  for (int i = 0; i < 3; ++i) {
+    lo[i] = std::max(0, c[i] - r);
+    hi[i] = std::min(grid.size()[i] - 1, c[i] + r);
+  }
   double best2 = limit_m * limit_m;
-  for (int z = -r; z <= r; ++z)
-    for (int y = -r; y <= r; ++y)
-      for (int x = -r; x <= r; ++x) {
-        const Eigen::Vector3i n = c + Eigen::Vector3i(x, y, z);
-        if (!grid.inWindow(n) || grid.at(n) != Occupancy::kOccupied) continue;
-        best2 = std::min(best2, (grid.centerOfLocal(n) - p).squaredNorm());
+  for (int z = lo.z(); z <= hi.z(); ++z)
+    for (int y = lo.y(); y <= hi.y(); ++y) {
+      const int64_t row = grid.linearIndex(Eigen::Vector3i(0, y, z));
+      for (int x = lo.x(); x <= hi.x(); ++x) {
+        if (grid.atLinear(row + x) != Occupancy::kOccupied) continue;
+        best2 = std::min(best2, (grid.centerOfLocal(Eigen::Vector3i(x, y, z)) - p).squaredNorm());
       }
+    }
   return std::sqrt(best2);
 }
 

@@ -37,7 +37,10 @@ bool EscapeZone::frees(const VoxelGrid& grid, const Eigen::Vector3i& local,
   if ((c - center).squaredNorm() > radius * radius) return false;
   // The start's own cell is free (its centre may lie nearer than the start itself), as in
   // GridAStar: else its centre is an obstacle point on every seed from the start.
-  return local == grid.localIndexOf(center) || keepsEscapeDistance(grid, c, min_distance, 0.0);
+  if (local == grid.localIndexOf(center)) return true;
+  const auto [entry, added] = keeps_distance_.try_emplace(grid.linearIndex(local), false);
+  if (added) entry->second = keepsEscapeDistance(grid, c, min_distance, 0.0);
+  return entry->second;
 }
 
 bool BlockedMask::build(const VoxelGrid& grid, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "mmh/common/collision_check.hpp"
 #include "mmh/common/voxel_grid.hpp"
 
@@ -128,6 +130,31 @@ TEST(CollisionCheck, SegmentsAndTrajectories) {
   // Blocked zone starts at x = 2.5 - 0.2 (cell centres within 0.2 m of the pole's cell).
   EXPECT_NEAR(*hit, 1.3, 0.06);
   EXPECT_FALSE(mmh::firstCollisionTime(g, mmh::Trajectory({p}), 0.0, 1.2).has_value());
+}
+
+// At the window's faces and corners, and from points outside it, only occupied cells inside the
+// window count: checked against every occupied cell's centre.
+TEST(CollisionCheck, OccupiedDistanceAtTheWindowsEdgesCountsTheCellsInside) {
+  mmh::VoxelGrid g(0.1, Eigen::Vector3i(-5, 3, 0), Eigen::Vector3i(12, 9, 6));
+  for (int64_t i = 0; i < g.numCells(); ++i) g.setLinear(i, mmh::Occupancy::kFree);
+  const std::vector<Eigen::Vector3i> occupied = {{0, 0, 0}, {11, 8, 5}, {0, 8, 2}, {6, 4, 3}};
+  for (const Eigen::Vector3i& c : occupied) g.set(c, mmh::Occupancy::kOccupied);
+  auto brute = [&](const Eigen::Vector3d& p, double limit) {
+    double best = limit;
+    for (const Eigen::Vector3i& c : occupied)
+      best = std::min(best, (g.centerOfLocal(c) - p).norm());
+    return best;
+  };
+  const Eigen::Vector3d lo = g.minCorner(), hi = g.maxCorner();
+  int checked = 0;
+  for (double x = lo.x() - 0.25; x <= hi.x() + 0.25; x += 0.07)
+    for (double y = lo.y() - 0.25; y <= hi.y() + 0.25; y += 0.07)
+      for (double z = lo.z() - 0.25; z <= hi.z() + 0.25; z += 0.07) {
+        const Eigen::Vector3d p(x, y, z);
+        ASSERT_NEAR(mmh::occupiedDistance(g, p, 0.35), brute(p, 0.35), 1e-12) << p.transpose();
+        ++checked;
+      }
+  EXPECT_GT(checked, 1000);
 }
 
 TEST(CollisionCheck, OccupiedDistanceAndTheEscapeRule) {

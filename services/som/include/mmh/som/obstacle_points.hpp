@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "mmh/common/voxel_grid.hpp"
@@ -16,6 +17,10 @@ namespace mmh::som {
 // Blocked cells that are not occupied and whose centre lies within `radius` of `center` are
 // treated as free: the margin a start inside the inflated zone must be allowed to leave.
 struct EscapeZone {
+  EscapeZone() = default;
+  EscapeZone(const Eigen::Vector3d& center_m, double radius_m, double min_distance_m = 0.0)
+      : center(center_m), radius(radius_m), min_distance(min_distance_m) {}
+
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
   double radius = -1.0;  // < 0: none
   // Only cells whose centres keep this distance from the occupied cells (and the start's own
@@ -23,6 +28,11 @@ struct EscapeZone {
   double min_distance = 0.0;
   // Whether the (inflated, not occupied) cell `local` with centre c is free for the escape.
   bool frees(const VoxelGrid& grid, const Eigen::Vector3i& local, const Eigen::Vector3d& c) const;
+
+ private:
+  // The distance test of each cell asked about, by linear index: the corridor asks about the same
+  // few hundred cells round the start again for every seed box and visibility test.
+  mutable std::unordered_map<int64_t, bool> keeps_distance_;
 };
 
 // A byte mask of the blocked cells whose centres lie in a world box (plus a one-cell border, so
