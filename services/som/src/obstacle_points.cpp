@@ -72,11 +72,19 @@ bool BlockedMask::build(const VoxelGrid& grid, const Eigen::Vector3d& lo, const 
     }
   }
   if (escape.radius > 0.0) {
-    // Inflated (not occupied) cells around the start are free.
+    // Inflated (not occupied) cells around the start are free. Only the mask cells round the
+    // escape zone can be (a cell to spare on each side; the distance test below decides).
     const double r2 = escape.radius * escape.radius;
-    for (int z = 0; z < n_.z() + 2; ++z)
-      for (int y = 0; y < n_.y() + 2; ++y)
-        for (int x = 0; x < n_.x() + 2; ++x) {
+    Eigen::Vector3i near_lo, near_hi;  // mask indices, border included
+    for (int i = 0; i < 3; ++i) {
+      const double from = (escape.center[i] - escape.radius - corner_[i]) / res_;
+      const double to = (escape.center[i] + escape.radius - corner_[i]) / res_;
+      near_lo[i] = static_cast<int>(std::clamp(std::floor(from), 0.0, double(n_[i] + 1)));
+      near_hi[i] = static_cast<int>(std::clamp(std::ceil(to) + 2.0, 0.0, double(n_[i] + 1)));
+    }
+    for (int z = near_lo.z(); z <= near_hi.z(); ++z)
+      for (int y = near_lo.y(); y <= near_hi.y(); ++y)
+        for (int x = near_lo.x(); x <= near_hi.x(); ++x) {
           uint8_t& m = mask_[z * sz_ + y * sy_ + x];
           if (!m) continue;
           const Eigen::Vector3d c = centerOf(x - 1, y - 1, z - 1);
@@ -93,9 +101,9 @@ bool BlockedMask::build(const VoxelGrid& grid, const Eigen::Vector3d& lo, const 
     const Eigen::Vector3i start_cell =
         grid.localIndexOf(escape.center) - f + Eigen::Vector3i::Ones();
     const int64_t step[3] = {1, sy_, sz_};
-    for (int z = 1; z < n_.z() + 1; ++z)
-      for (int y = 1; y < n_.y() + 1; ++y)
-        for (int x = 1; x < n_.x() + 1; ++x) {
+    for (int z = std::max(1, near_lo.z()); z <= std::min(n_.z(), near_hi.z()); ++z)
+      for (int y = std::max(1, near_lo.y()); y <= std::min(n_.y(), near_hi.y()); ++y)
+        for (int x = std::max(1, near_lo.x()); x <= std::min(n_.x(), near_hi.x()); ++x) {
           const int64_t i = z * sz_ + y * sy_ + x;
           if (mask_[i] != 2 || Eigen::Vector3i(x, y, z) == start_cell) continue;
           const Eigen::Vector3d c = centerOf(x - 1, y - 1, z - 1);
@@ -112,8 +120,12 @@ bool BlockedMask::build(const VoxelGrid& grid, const Eigen::Vector3d& lo, const 
               escape_faces_.push_back(q);
             }
         }
-    for (uint8_t& m : mask_)
-      if (m == 2) m = 0;
+    for (int z = near_lo.z(); z <= near_hi.z(); ++z)
+      for (int y = near_lo.y(); y <= near_hi.y(); ++y)
+        for (int x = near_lo.x(); x <= near_hi.x(); ++x) {
+          uint8_t& m = mask_[z * sz_ + y * sy_ + x];
+          if (m == 2) m = 0;
+        }
   }
   if (check_inflation_m > 0.0 && check_whole_cells)
     addCheckCellFences(grid, f, check_inflation_m, check_face_clearance_m);
