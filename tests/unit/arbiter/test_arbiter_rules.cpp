@@ -163,6 +163,16 @@ class ArbiterRules : public ::testing::Test {
     return farthest;
   }
 
+  // With `above`, a fence whose ceiling lies 3 cm below the start (1.2 m) and a goal under it:
+  // the vehicle flies 1-3 cm above the fence, within the tolerance answers are accepted with (so
+  // an accepted answer may leave it there). Else the fixture's fence and goal.
+  void setCeilingJustBelowTheVehicle(bool above) {
+    params_.geofence_max_m.z() = above ? 1.17 : 2.7;
+    goal_.z() = above ? 1.15 : 1.2;
+    // The test's first plan (0.8 s per metre) is not a slow one to be replanned at once.
+    params_.slow_plan_ratio = above ? 3.0 : ArbiterParams{}.slow_plan_ratio;
+  }
+
   void putPillar(double x, double y, double radius) {
     for (int64_t i = 0; i < grid_.numCells(); ++i) {
       const Vector3d c = grid_.centerOfLocal(grid_.localFromLinear(i));
@@ -716,8 +726,8 @@ TEST_F(ArbiterRules, AFailedRoundWithAFarDangerSlowsTheCommittedPathWhileTheStop
 TEST_F(ArbiterRules, AFailedRoundWithAFarDangerCommitsThePathUpToABackupStopClearOfIt) {
   params_.stale_map_s = 10.0;
   params_.defer_far_collisions = false;
-  // Also with the vehicle 1-3 cm above the fence's ceiling, within the tolerance that answers are
-  // accepted with (so an accepted answer may leave it there): the backup stop keeps to that band.
+  // Also with the vehicle just above the fence's ceiling (setCeilingJustBelowTheVehicle): the
+  // backup stop keeps to the tolerance band.
   struct Case {
     double ratio;
     bool above_fence;
@@ -726,10 +736,7 @@ TEST_F(ArbiterRules, AFailedRoundWithAFarDangerCommitsThePathUpToABackupStopClea
     const double ratio = each.ratio;
     SCOPED_TRACE("ratio " + std::to_string(ratio) + (each.above_fence ? ", above the fence" : ""));
     params_.failed_round_speed_ratio = ratio;
-    params_.geofence_max_m.z() = each.above_fence ? 1.17 : 2.7;
-    goal_.z() = each.above_fence ? 1.15 : 1.2;
-    // The test's first plan (0.8 s per metre) is not a slow one to be replanned at once.
-    params_.slow_plan_ratio = each.above_fence ? 3.0 : ArbiterParams{}.slow_plan_ratio;
+    setCeilingJustBelowTheVehicle(each.above_fence);
     clearGrid();
     auto a = started(Policy::kMmh);
     Trajectory path;
@@ -938,15 +945,12 @@ TEST_F(ArbiterRules, AStuckVehicleBacksOffAskingEveryModeOfTheChainAtOnce) {
 // vehicle), it flies back the way it came, slowly, to the back-off point, and only then do the
 // modes plan again.
 TEST_F(ArbiterRules, ABackOffNoModeAnswersIsFlownBackTheWayTheVehicleCame) {
-  // Also with the vehicle 1-3 cm above the fence's ceiling, within the tolerance that answers are
-  // accepted with (an accepted answer may leave it there): the way back keeps to that band.
+  // Also with the vehicle just above the fence's ceiling (setCeilingJustBelowTheVehicle): the way
+  // back keeps to the tolerance band.
   for (const bool above_fence : {false, true}) {
     SCOPED_TRACE(above_fence ? "above the fence" : "inside the fence");
     clearGrid();
-    params_.geofence_max_m.z() = above_fence ? 1.17 : 2.7;
-    goal_.z() = above_fence ? 1.15 : 1.2;
-    // The test's first plan (0.8 s per metre) is not a slow one to be replanned at once.
-    params_.slow_plan_ratio = above_fence ? 3.0 : ArbiterParams{}.slow_plan_ratio;
+    setCeilingJustBelowTheVehicle(above_fence);
     double t1 = 0.0;
     auto a = stuckBeforeAPillar(&t1);
     std::vector<Vector3d> flown;

@@ -31,7 +31,8 @@ struct EscapeZone {
 
  private:
   // The distance test of each cell asked about, by linear index: the corridor asks about the same
-  // few hundred cells round the start again for every seed box and visibility test.
+  // few hundred cells round the start again for every seed box and visibility test. Valid for
+  // one grid and the fields as first asked with: a zone lives for one plan.
   mutable std::unordered_map<int64_t, bool> keeps_distance_;
 };
 
