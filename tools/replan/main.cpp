@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   node.log_level = "error";
   mmh::ReplanOptions options;
   bool list = false;
+  bool answers = false;
   std::vector<std::string> logs;
   std::string set_help;
   mmh::ArgParser parser(
@@ -37,6 +38,9 @@ int main(int argc, char** argv) {
                    "docs/configuration.md, also one the file leaves out)");
   parser.addString("--prefix", &options.prefix, "channel prefix of the vehicle (default: none)");
   parser.addFlag("--list", &list, "one line per request that failed then or fails now");
+  parser.addFlag("--answers", &answers,
+                 "one line per request answered now: how far and how fast the answer flies "
+                 "(duration, length, mean and top speed, jerk energy)");
   std::string trace_id;
   parser.addString("--trace", &trace_id,
                    "request id: print EAM's round-by-round trace of that request (one log)");
@@ -76,6 +80,17 @@ int main(int argc, char** argv) {
                       : o.logged_ok    ? "ok"
                                        : o.logged_detail.c_str(),
                       o.ok ? "ok" : o.detail.c_str());
+        }
+      }
+      if (answers) {
+        for (const mmh::ReplanOutcome& o : outcomes) {
+          if (!o.ok) continue;
+          std::printf(
+              "%s %7.2f s  request %lld  from %.2f m/s  target %.2f m away: %.2f s, %.2f m, mean "
+              "%.2f m/s, top %.2f m/s, energy %.1f m^2/s^5\n",
+              path.c_str(), o.t_s, static_cast<long long>(o.request_id), o.start_speed_mps,
+              o.target_distance_m, o.duration_s, o.length_m,
+              o.duration_s > 0.0 ? o.length_m / o.duration_s : 0.0, o.max_speed_mps, o.jerk_energy);
         }
       }
       all.insert(all.end(), outcomes.begin(), outcomes.end());

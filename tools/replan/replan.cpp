@@ -28,6 +28,7 @@ namespace {
 struct Answer {
   bool ok = false;
   std::string detail;
+  Trajectory trajectory;  // when ok
 };
 
 // The mode's planner behind one signature: the map and the request message.
@@ -55,27 +56,29 @@ ModePlanner makePlanner(const std::string& mode, const ReplanOptions& options) {
                                              })
                                        : nullptr);
               const eam::PlanResult r = planner->plan(grid, eamRequestOf(msg));
-              return Answer{r.ok, r.ok ? "" : std::string(toString(r.reason)) + ": " + r.detail};
+              return Answer{r.ok, r.ok ? "" : std::string(toString(r.reason)) + ": " + r.detail,
+                            r.trajectory};
             },
             [planner](const VoxelGrid& grid) { planner->prepare(grid); }};
   }
   if (mode == "som") {
     auto planner = std::make_shared<som::Planner>(som::loadSomParams(config));
-    return {
-        channels::kPlanRequestSom, plan_request_t::MODE_SOM,
-        [planner](const VoxelGrid& grid, const plan_request_t& msg) {
-          const som::PlanOutput r =
-              planner->plan(grid, startStateOf(msg), toVec3(msg.target), msg.max_speed_mps);
-          return Answer{r.ok(), r.ok() ? "" : std::string(toString(r.status)) + ": " + r.detail};
-        },
-        [planner](const VoxelGrid& grid) { planner->prepare(grid); }};
+    return {channels::kPlanRequestSom, plan_request_t::MODE_SOM,
+            [planner](const VoxelGrid& grid, const plan_request_t& msg) {
+              const som::PlanOutput r =
+                  planner->plan(grid, startStateOf(msg), toVec3(msg.target), msg.max_speed_mps);
+              return Answer{r.ok(), r.ok() ? "" : std::string(toString(r.status)) + ": " + r.detail,
+                            r.trajectory};
+            },
+            [planner](const VoxelGrid& grid) { planner->prepare(grid); }};
   }
   if (mode == "fpm") {
     auto planner = std::make_shared<fpm::Planner>(fpm::loadParams(config));
     return {channels::kPlanRequestFpm, plan_request_t::MODE_FPM,
             [planner](const VoxelGrid&, const plan_request_t& msg) {
               const fpm::Result r = planner->plan(fpmRequestOf(msg));
-              return Answer{r.ok, r.ok ? "" : std::string(toString(r.status)) + ": " + r.detail};
+              return Answer{r.ok, r.ok ? "" : std::string(toString(r.status)) + ": " + r.detail,
+                            r.trajectory};
             },
             nullptr};
   }
@@ -124,6 +127,13 @@ std::vector<ReplanOutcome> replanLog(const std::string& log_path, const ReplanOp
                 .count();
         o.ok = a.ok;
         o.detail = a.detail;
+        o.target_distance_m = (toVec3(msg.target) - toVec3(msg.start_position)).norm();
+        if (a.ok) {
+          o.duration_s = a.trajectory.duration();
+          o.length_m = a.trajectory.arcLength();
+          o.max_speed_mps = a.trajectory.maxSpeed();
+          o.jerk_energy = a.trajectory.jerkEnergy();
+        }
       } else {
         o.detail = "no LOCAL_MAP before the request";
       }
@@ -167,11 +177,18 @@ ReplanSummary summarize(const std::vector<ReplanOutcome>& outcomes) {
     if (!o.ok) {
       ++s.failed_now;
       ++s.reasons_now[failureKind(o.detail)];
+    } else {
+      s.answered_length_m += o.length_m;
+      s.answered_duration_s += o.duration_s;
+      s.mean_jerk_energy += o.jerk_energy;
     }
     if (!o.logged_ok && o.ok) ++s.fixed;
     if (o.logged_ok && !o.ok) ++s.broken;
   }
   if (s.requests > 0) s.mean_compute_ms = total_ms / s.requests;
+  const int answered = s.requests - s.failed_now;
+  if (answered > 0) s.mean_jerk_energy /= answered;
+  if (s.answered_duration_s > 0.0) s.mean_speed_mps = s.answered_length_m / s.answered_duration_s;
   return s;
 }
 
@@ -183,6 +200,13 @@ void printReplanSummary(const ReplanSummary& s, std::ostream& out) {
                 s.requests, s.unanswered, s.failed_before, s.failed_now, s.fixed, s.broken,
                 s.mean_compute_ms, s.max_compute_ms);
   out << line;
+  if (s.requests > s.failed_now) {
+    std::snprintf(line, sizeof(line),
+                  "answers now: %.1f m in %.1f s (mean speed %.2f m/s), mean energy %.1f "
+                  "m^2/s^5\n",
+                  s.answered_length_m, s.answered_duration_s, s.mean_speed_mps, s.mean_jerk_energy);
+    out << line;
+  }
   if (!s.reasons_now.empty()) out << "failures now by kind:\n";
   std::vector<std::pair<int, std::string>> kinds;
   for (const auto& [kind, n] : s.reasons_now) kinds.emplace_back(n, kind);

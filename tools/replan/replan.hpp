@@ -32,6 +32,12 @@ struct ReplanOutcome {
   bool ok = false;            // planned again
   std::string detail;         // failure text now ("" when ok)
   double compute_ms = 0.0;    // planned again, wall clock
+  // The answer planned again (when ok): how far it goes and how fast.
+  double target_distance_m = 0.0;  // straight from the start to the requested target
+  double duration_s = 0.0;
+  double length_m = 0.0;  // arc length
+  double max_speed_mps = 0.0;
+  double jerk_energy = 0.0;  // integral of |jerk|^2 (m^2/s^5)
 };
 
 struct ReplanOptions {
@@ -56,6 +62,13 @@ struct ReplanSummary {
   int broken = 0;  // answered then, failed now
   double mean_compute_ms = 0.0;
   double max_compute_ms = 0.0;
+  // The answers now: how fast they fly (their total length over their total duration) and how
+  // smooth they are (mean integral of |jerk|^2), so that a change to a mode shows whether its
+  // answers got slower or rougher, not only whether it answers.
+  double answered_length_m = 0.0;
+  double answered_duration_s = 0.0;
+  double mean_speed_mps = 0.0;
+  double mean_jerk_energy = 0.0;
   std::map<std::string, int> reasons_now;  // failure text without its numbers -> count
 };
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # mmh-replan: the EAM, SOM and FPM requests of lock-step flights recorded by mmh-stack --log, planned
 # again by the same build and configuration, fail exactly where they failed in flight (nothing
-# fixed, nothing broken, one --list line per failure); another configuration is accepted with
+# fixed, nothing broken, one --list line per failure, one --answers line per answer); another configuration is accepted with
 # --set; --trace prints the rounds of one EAM request; usage errors exit with 2 and say why.
 set -euo pipefail
 build=$1
@@ -31,6 +31,16 @@ for mode in eam som; do
   [ "$listed" = "$before" ] || fail "$mode: --list shows $listed requests, $before failed"
   with_state=$(grep -cE "^$log .* [0-9.]+ m/s  [0-9.]+ m/s\^2  then: " "$out/$mode.list" || true)
   [ "$with_state" = "$listed" ] || fail "$mode: --list lines without the start speed and acceleration"
+  # --answers: one line per request answered now, each with a positive duration and length.
+  "$replan" --mode "$mode" --answers "$log" > "$out/$mode.answers" || fail "$mode: --answers exit $?"
+  answered=$(grep -cE "^$log .* target [0-9.]+ m away: [0-9.]+ s, [0-9.]+ m, mean [0-9.]+ m/s" \
+    "$out/$mode.answers" || true)
+  [ "$answered" = "$((requests - now))" ] ||
+    fail "$mode: --answers shows $answered answers, $((requests - now)) were answered"
+  zero=$(grep -cE "^$log .* away: 0\.00 s" "$out/$mode.answers" || true)
+  [ "$zero" = 0 ] || fail "$mode: --answers shows answers without duration"
+  grep -qE '^answers now: [0-9.]+ m in [0-9.]+ s \(mean speed [0-9.]+ m/s\)' "$out/$mode.txt" ||
+    fail "$mode: no 'answers now' line in the summary"
 done
 # FPM needs no map: the FPM requests of a sparse forest's flight, planned again the same.
 fpm_log=$out/sparse.lcm

@@ -1,5 +1,6 @@
-// mmh-replan's summary: failure kinds without their numbers, and the counts of fixed and broken
-// requests (the planning itself is covered by the integration test on a recorded flight).
+// mmh-replan's summary: failure kinds without their numbers, the counts of fixed and broken
+// requests, and the speed and energy of the answers (the planning itself is covered by the
+// integration test on a recorded flight).
 #include <gtest/gtest.h>
 
 #include <sstream>
@@ -57,6 +58,41 @@ TEST(Replan, SummaryCountsFixedBrokenAndKinds) {
   mmh::printReplanSummary(s, text);
   EXPECT_NE(text.str().find("failed then 2, now 2: 1 fixed, 1 broken"), std::string::npos)
       << text.str();
+}
+
+TEST(Replan, SummaryGivesTheSpeedAndEnergyOfTheAnswersNow) {
+  mmh::ReplanOutcome slow = outcome(true, true);
+  slow.length_m = 10.0;
+  slow.duration_s = 8.0;
+  slow.jerk_energy = 30.0;
+  mmh::ReplanOutcome fast = outcome(false, true);
+  fast.length_m = 14.0;
+  fast.duration_s = 4.0;
+  fast.jerk_energy = 10.0;
+  // A failure now adds neither length, duration nor energy (its trajectory is empty).
+  mmh::ReplanOutcome failed = outcome(true, false, "no map");
+  failed.length_m = 99.0;
+  failed.duration_s = 99.0;
+  failed.jerk_energy = 99.0;
+  const mmh::ReplanSummary s = mmh::summarize({slow, fast, failed});
+  EXPECT_DOUBLE_EQ(s.answered_length_m, 24.0);
+  EXPECT_DOUBLE_EQ(s.answered_duration_s, 12.0);
+  EXPECT_DOUBLE_EQ(s.mean_speed_mps, 2.0);  // total length over total duration
+  EXPECT_DOUBLE_EQ(s.mean_jerk_energy, 20.0);
+  std::ostringstream text;
+  mmh::printReplanSummary(s, text);
+  EXPECT_NE(text.str().find("answers now: 24.0 m in 12.0 s (mean speed 2.00 m/s), mean energy "
+                            "20.0 m^2/s^5"),
+            std::string::npos)
+      << text.str();
+}
+
+TEST(Replan, NoAnswerNowPrintsNoAnswerLine) {
+  const mmh::ReplanSummary s = mmh::summarize({outcome(true, false, "no map")});
+  EXPECT_DOUBLE_EQ(s.mean_speed_mps, 0.0);
+  std::ostringstream text;
+  mmh::printReplanSummary(s, text);
+  EXPECT_EQ(text.str().find("answers now"), std::string::npos) << text.str();
 }
 
 TEST(Replan, AnEmptyLogSummarisesToZeros) {
