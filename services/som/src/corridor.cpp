@@ -144,6 +144,7 @@ bool CorridorBuilder::build(const VoxelGrid& grid, const std::vector<Eigen::Vect
 
   std::vector<Polytope> polys;
   std::vector<Eigen::Vector3d> junctions;
+  std::vector<Ellipsoid> ellipsoids;
   // Seed i runs from `a` (the start, then the junction with the previous polytope) to the
   // farthest point of the path ahead of `progress` that is visible from `a`.
   Eigen::Vector3d a = path.pointAt(0.0);
@@ -232,6 +233,7 @@ bool CorridorBuilder::build(const VoxelGrid& grid, const std::vector<Eigen::Vect
       return false;
     }
     polys.push_back(std::move(poly));
+    ellipsoids.push_back(metric);
     const Polytope& p = polys.back();
     // The target ends the corridor once it lies the junction margin inside. A target that is
     // only in the box grown round a seed short of it may sit on a face, which the optimiser
@@ -265,6 +267,7 @@ bool CorridorBuilder::build(const VoxelGrid& grid, const std::vector<Eigen::Vect
       if (polys[i - 1].contains(q, params.junction_margin_m) &&
           polys[i + 1].contains(q, params.junction_margin_m)) {
         polys.erase(polys.begin() + i);
+        ellipsoids.erase(ellipsoids.begin() + i);
         junctions.erase(junctions.begin() + i);
         junctions[i - 1] = q;
         dropped = true;
@@ -274,6 +277,7 @@ bool CorridorBuilder::build(const VoxelGrid& grid, const std::vector<Eigen::Vect
   }
   out->polytopes = std::move(polys);
   out->junctions = std::move(junctions);
+  out->ellipsoids = std::move(ellipsoids);
   return true;
 }
 

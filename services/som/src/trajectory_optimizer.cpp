@@ -1,5 +1,6 @@
 #include "mmh/som/trajectory_optimizer.hpp"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -74,6 +75,32 @@ std::vector<double> cornerAwareDurations(const std::vector<Eigen::Vector3d>& poi
   return durations;
 }
 
+TrajectoryOptimizer::InnerRegion TrajectoryOptimizer::innerRegion(const Polytope& poly,
+                                                                  const Ellipsoid& ellipsoid,
+                                                                  double margin_m) {
+  // For p = d + C u: a . p - b = (a . d - b) + (C a) . u <= (a . d - b) + |C a| |u| (C
+  // symmetric), so |u| <= (b - a . d - margin) / |C a| keeps face a the margin inside; the
+  // smallest such bound over the faces, less a micrometre for the rounding of u.
+  constexpr double kRoundingM = 1e-6;
+  InnerRegion inner;
+  const Eigen::FullPivLU<Eigen::Matrix3d> lu(ellipsoid.shape);
+  if (!lu.isInvertible()) return inner;
+  double radius = std::numeric_limits<double>::infinity();
+  const Polytope::Matrix& h = poly.halfspaces();
+  for (int i = 0; i < h.rows(); ++i) {
+    const Eigen::Vector3d a = h.row(i).head<3>().transpose();
+    const double slack = h(i, 3) - a.dot(ellipsoid.center) - margin_m - kRoundingM;
+    const double reach = (ellipsoid.shape * a).norm();
+    if (!(slack > 0.0) || !(reach > 0.0)) return inner;
+    radius = std::min(radius, slack / reach);
+  }
+  if (!std::isfinite(radius)) return inner;
+  inner.to_unit = lu.inverse();
+  inner.center = ellipsoid.center;
+  inner.radius2 = radius * radius;
+  return inner;
+}
+
 TrajectoryOptimizer::TrajectoryOptimizer(const OptimizerParams& params, double max_vel_mps,
                                          double max_acc_mps2)
     : params_(params), max_vel_(max_vel_mps), max_acc_(max_acc_mps2) {}
@@ -112,6 +139,13 @@ bool TrajectoryOptimizer::setup(const KinematicState& start, const Eigen::Vector
   tail_.setZero();
   tail_.col(0) = target;
   minco_.setConditions(head_, tail_, pieces_);
+
+  inner_.assign(n, InnerRegion());
+  if (corridor.ellipsoids.size() == static_cast<size_t>(n)) {
+    for (int j = 0; j < n; ++j)
+      inner_[j] =
+          innerRegion(corridor.polytopes[j], corridor.ellipsoids[j], params_.corridor_margin_m);
+  }
 
   const int m = pieces_;
   x0_.resize(3 * (m - 1) + m);
@@ -156,8 +190,13 @@ double TrajectoryOptimizer::evaluate(const Eigen::VectorXd& x, Eigen::VectorXd* 
   auto pointwise = [&](const PenaltyPoint& pt, Eigen::Vector3d& gp, Eigen::Vector3d& gv,
                        Eigen::Vector3d& ga) {
     double value = 0.0, g = 0.0;
-    const Polytope::Matrix& h = polys[piece_polytope_[pt.piece]].halfspaces();
-    for (int j = 0; j < h.rows(); ++j) {
+    const int k = piece_polytope_[pt.piece];
+    const InnerRegion& inner = inner_[k];
+    const bool deep_inside =
+        inner.radius2 > 0.0 &&
+        (inner.to_unit * (pt.pos - inner.center)).squaredNorm() < inner.radius2;
+    const Polytope::Matrix& h = polys[k].halfspaces();
+    for (int j = 0; j < (deep_inside ? 0 : h.rows()); ++j) {
       const double viol =
           h(j, 0) * pt.pos.x() + h(j, 1) * pt.pos.y() + h(j, 2) * pt.pos.z() - h(j, 3) + shrink;
       if (viol <= 0.0) continue;

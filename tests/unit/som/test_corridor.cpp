@@ -61,7 +61,16 @@ void expectValidCorridor(const som_test::World& w, const mmh::som::Corridor& c,
   // 3. Start and target covered.
   EXPECT_LE(c.polytopes.front().maxViolation(w.start), mmh::som::kCorridorContainTolerance);
   EXPECT_LE(c.polytopes.back().maxViolation(w.target), mmh::som::kCorridorContainTolerance);
-  // 4. Bounded by the geofence band.
+  // 4. One ellipsoid per polytope, inside it (its centre and the ends of its axes).
+  ASSERT_EQ(c.ellipsoids.size(), c.polytopes.size());
+  for (size_t k = 0; k < c.polytopes.size(); ++k) {
+    const mmh::som::Ellipsoid& e = c.ellipsoids[k];
+    EXPECT_LT(c.polytopes[k].maxViolation(e.center), 0.0) << k;
+    for (int axis = 0; axis < 3; ++axis)
+      for (double sign : {-1.0, 1.0})
+        EXPECT_LE(c.polytopes[k].maxViolation(e.center + sign * e.shape.col(axis)), 1e-9) << k;
+  }
+  // 5. Bounded by the geofence band.
   for (const auto& p : c.polytopes) {
     EXPECT_GT(p.maxViolation(Vector3d(6, 0, 0.25)), 0.0);
     EXPECT_GT(p.maxViolation(Vector3d(6, 0, 2.75)), 0.0);

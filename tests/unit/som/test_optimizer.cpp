@@ -138,6 +138,39 @@ TEST(SomOptimizer, GradientMatchesFiniteDifferences) {
   }
 }
 
+// The ellipsoids only let the corridor penalty skip samples deep inside a polytope: with them or
+// without them, the cost and its gradient are the same to the last bit, at points inside and
+// points pushed out of the corridor.
+TEST(SomOptimizer, TheEllipsoidShortcutChangesNoCostNorGradient) {
+  const Fixture s = sBendSetup();
+  ASSERT_EQ(s.corridor.ellipsoids.size(), s.corridor.polytopes.size());
+  mmh::som::Corridor bare = s.corridor;
+  bare.ellipsoids.clear();
+  mmh::som::OptimizerParams params;
+  mmh::som::TrajectoryOptimizer with(params, 3.0, 2.0), without(params, 3.0, 2.0);
+  ASSERT_TRUE(with.setup(s.start, s.world.target, s.corridor));
+  ASSERT_TRUE(without.setup(s.start, s.world.target, bare));
+  const int m = with.numPieces();
+  std::vector<VectorXd> points{with.initialGuess()};
+  for (double push : {0.2, 0.6}) {
+    VectorXd moved = with.initialGuess();
+    for (int i = 0; i < m - 1; ++i) moved[3 * i + 1] += (i % 2 ? push : -push);
+    points.push_back(moved);
+  }
+  bool some_penalty = false;
+  for (const VectorXd& x : points) {
+    VectorXd g_with, g_without;
+    const double f_with = with.objective(x, &g_with);
+    const double f_without = without.objective(x, &g_without);
+    EXPECT_EQ(f_with, f_without);
+    EXPECT_TRUE(g_with == g_without);
+    double control, time, penalty;
+    with.costParts(x, &control, &time, &penalty);
+    some_penalty = some_penalty || penalty > 0.0;
+  }
+  EXPECT_TRUE(some_penalty) << "no point left the corridor: the faces were never tested";
+}
+
 TEST(SomOptimizer, ResultMeetsBoundaryConditionsAndLimits) {
   const Fixture s = sBendSetup();
   mmh::som::OptimizerParams params;

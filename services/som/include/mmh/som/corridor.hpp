@@ -21,6 +21,9 @@ struct Corridor {
   // junctions[i] lies in polytopes[i] and polytopes[i + 1] (a point of the path, chosen at
   // least the junction margin inside where the path allows).
   std::vector<Eigen::Vector3d> junctions;
+  // ellipsoids[i] lies in polytopes[i] (the metric its last faces were placed with); empty when
+  // the corridor was made by hand. Only a shortcut for the optimiser's corridor penalty.
+  std::vector<Ellipsoid> ellipsoids;
   // Box that bounds every polytope (geofence within the map window).
   Eigen::Vector3d bound_lo = Eigen::Vector3d::Zero(), bound_hi = Eigen::Vector3d::Zero();
   int polytopes_built = 0;  // before redundant ones were removed

@@ -93,6 +93,16 @@ class TrajectoryOptimizer {
   Eigen::Matrix3Xd points_, grad_points_;
   Eigen::VectorXd durations_, grad_durations_, grad_total_;
   Eigen::MatrixX3d grad_coeffs_;
+  // Per polytope, an ellipsoid {d + C u : |u| <= r} inside which every face is met with the
+  // corridor margin to spare, so that the penalty need not test the faces there: C^-1, d and r^2
+  // (r^2 < 0: none).
+  struct InnerRegion {
+    Eigen::Matrix3d to_unit;
+    Eigen::Vector3d center;
+    double radius2 = -1.0;
+  };
+  std::vector<InnerRegion> inner_;
+  static InnerRegion innerRegion(const Polytope& poly, const Ellipsoid& ellipsoid, double margin_m);
   Eigen::VectorXd xbuf_, gbuf_;
   int evaluations_ = 0;
 };
