@@ -17,24 +17,16 @@ bool inSlot(const VoxelGrid& grid, const Eigen::Vector3i& c, int reach, int diag
                           {1, -1, 0, diag_reach}};
   if (!grid.inWindow(c)) return false;
   const int64_t base = grid.linearIndex(c);
+  const uint16_t* blocked = grid.blockedCounts();
+  // A cell at least the probes' reach inside the window needs no window test per probe.
   const int far = std::max(reach, diag_reach);
-  if ((c.array() >= far).all() && (c.array() < size.array() - far).all()) {
-    // Every probed cell lies in the window: only the blocked counts to read.
-    const uint16_t* blocked = grid.blockedCounts();
-    for (const auto& a : axes) {
-      const int64_t step = a[0] * sx + a[1] * sy + a[2] * sz;
-      bool ahead = false, behind = false;
-      for (int k = 1; k <= a[3] && !ahead; ++k) ahead = blocked[base + k * step] > 0;
-      for (int k = 1; k <= a[3] && ahead && !behind; ++k) behind = blocked[base - k * step] > 0;
-      if (ahead && behind) return true;
-    }
-    return false;
-  }
+  const bool interior = (c.array() >= far).all() && (c.array() < size.array() - far).all();
   auto blocked_along = [&](const int* a, int sign) {
+    const int64_t step = sign * (a[0] * sx + a[1] * sy + a[2] * sz);
     for (int k = 1; k <= a[3]; ++k) {
-      const Eigen::Vector3i n = c + sign * k * Eigen::Vector3i(a[0], a[1], a[2]);
-      if (!grid.inWindow(n)) return false;  // unknown beyond the window: free
-      if (grid.isBlockedLinear(base + sign * k * (a[0] * sx + a[1] * sy + a[2] * sz))) return true;
+      if (!interior && !grid.inWindow(c + sign * k * Eigen::Vector3i(a[0], a[1], a[2])))
+        return false;  // unknown beyond the window: free
+      if (blocked[base + k * step] > 0) return true;
     }
     return false;
   };

@@ -23,8 +23,11 @@ class BandedSystem {
   void solveTransposed(Eigen::Ref<Eigen::MatrixXd> b) const;
 
  private:
-  void solve3(double* x0, Eigen::Index ld) const;
-  void solveTransposed3(double* x0, Eigen::Index ld) const;
+  // kCols columns starting at x, ld apart.
+  template <int kCols>
+  void solveColumns(double* x, Eigen::Index ld) const;
+  template <int kCols>
+  void solveTransposedColumns(double* x, Eigen::Index ld) const;
   // Row-major band: row i keeps columns i - lower .. i + upper contiguously (cache-friendly
   // row operations in the factorisation and the solves).
   int index(int i, int j) const { return i * (lower_ + upper_ + 1) + (j - i + lower_); }
