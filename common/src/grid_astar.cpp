@@ -65,18 +65,22 @@ AStarResult GridAStar::search(const VoxelGrid& grid, const Eigen::Vector3d& star
     lo[i] = static_cast<int>(std::clamp(first, 0.0, double(grid.size()[i])));
     hi[i] = static_cast<int>(std::clamp(last, -1.0, double(grid.size()[i] - 1)));
   }
-  auto in_bounds = [&](const Eigen::Vector3i& c) {
-    return (c.array() >= lo.array()).all() && (c.array() <= hi.array()).all();
+  // These two run for every neighbour: inlined (GCC otherwise calls them from this long function).
+  auto in_bounds = [&](const Eigen::Vector3i& c) __attribute__((always_inline)) {
+    return c.x() >= lo.x() && c.y() >= lo.y() && c.z() >= lo.z() && c.x() <= hi.x() &&
+           c.y() <= hi.y() && c.z() <= hi.z();
   };
   const double escape_cells = options.start_escape_radius_m / res;
-  auto traversable = [&](const Eigen::Vector3i& c, int64_t idx) {
-    const Occupancy occ = grid.atLinear(idx);
-    if (occ == Occupancy::kOccupied) return false;
-    if (!options.unknown_is_free && occ == Occupancy::kUnknown) return false;
-    if (!grid.isBlockedLinear(idx)) return true;
+  auto escapes_start = [&](const Eigen::Vector3i& c) {
     if (!(escape_cells > 0.0 && (c - s).cast<double>().norm() <= escape_cells)) return false;
     return c == s || keepsEscapeDistance(grid, grid.centerOfLocal(c),
                                          options.start_escape_min_distance_m, 0.0);
+  };
+  auto traversable = [&](const Eigen::Vector3i& c, int64_t idx) __attribute__((always_inline)) {
+    const Occupancy occ = grid.atLinear(idx);
+    if (occ == Occupancy::kOccupied) return false;
+    if (!options.unknown_is_free && occ == Occupancy::kUnknown) return false;
+    return !grid.isBlockedLinear(idx) || escapes_start(c);
   };
   const int64_t s_idx = grid.linearIndex(s), g_idx = grid.linearIndex(g);
   if (!traversable(s, s_idx)) {

@@ -19,16 +19,6 @@ VoxelGrid::VoxelGrid(double resolution_m, const Eigen::Vector3i& origin_index,
   kernel_ = {Eigen::Vector3i::Zero()};
 }
 
-Eigen::Vector3i VoxelGrid::globalIndexOf(const Eigen::Vector3d& p) const {
-  return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / resolution_)),
-                         static_cast<int>(std::floor(p.y() / resolution_)),
-                         static_cast<int>(std::floor(p.z() / resolution_)));
-}
-
-Eigen::Vector3d VoxelGrid::centerOfLocal(const Eigen::Vector3i& local) const {
-  return ((origin_ + local).cast<double>() + Eigen::Vector3d::Constant(0.5)) * resolution_;
-}
-
 Eigen::Vector3i VoxelGrid::localFromLinear(int64_t index) const {
   const int64_t plane = int64_t{size_.x()} * size_.y();
   int z = static_cast<int>(index / plane);

@@ -44,26 +44,44 @@ class SmoothnessPreconditioner {
     }
     inv_diag_.resize(n);
     for (int i = 0; i < n; ++i) inv_diag_[i] = 1.0 / at(i, i);
+    // L's off-diagonal entries by row and by column, each contiguous and in the order the
+    // substitutions use them.
+    below_.assign(static_cast<size_t>(n) * kBand, 0.0);
+    left_.assign(static_cast<size_t>(n) * kBand, 0.0);
+    for (int i = 0; i < n; ++i) {
+      for (int k = i + 1; k <= std::min(n - 1, i + kBand); ++k)
+        below_[kBand * i + (k - i - 1)] = at(k, i);
+      for (int k = std::max(0, i - kBand); k < i; ++k)
+        left_[kBand * i + (k - i + kBand)] = at(i, k);
+    }
   }
-  // z = L^{-T} y (back substitution), per axis: y and z hold `axes` values per point.
-  void applyInverseTransposed(const double* y, double* z, int axes) const {
+  // z = L^{-T} y (back substitution), per axis: y and z hold kAxes values per point. The axis
+  // count is fixed at compile time: this and applyInverse run on every cost evaluation, and
+  // with a run-time count their loops cost more than the cost itself.
+  template <int kAxes>
+  void applyInverseTransposed(const double* y, double* z) const {
     for (int i = n_ - 1; i >= 0; --i) {
-      const int kmax = std::min(n_ - 1, i + kBand);
-      for (int a = 0; a < axes; ++a) {
-        double s = y[axes * i + a];
-        for (int k = i + 1; k <= kmax; ++k) s -= at(k, i) * z[axes * k + a];
-        z[axes * i + a] = s * inv_diag_[i];
+      const int count = std::min(n_ - 1 - i, kBand);
+      const double* l = &below_[kBand * i];
+      const double* z_next = z + kAxes * (i + 1);
+      for (int a = 0; a < kAxes; ++a) {
+        double s = y[kAxes * i + a];
+        for (int j = 0; j < count; ++j) s -= l[j] * z_next[kAxes * j + a];
+        z[kAxes * i + a] = s * inv_diag_[i];
       }
     }
   }
   // w = L^{-1} g (forward substitution), per axis.
-  void applyInverse(const double* g, double* w, int axes) const {
+  template <int kAxes>
+  void applyInverse(const double* g, double* w) const {
     for (int i = 0; i < n_; ++i) {
-      const int kmin = std::max(0, i - kBand);
-      for (int a = 0; a < axes; ++a) {
-        double s = g[axes * i + a];
-        for (int k = kmin; k < i; ++k) s -= at(i, k) * w[axes * k + a];
-        w[axes * i + a] = s * inv_diag_[i];
+      const int count = std::min(i, kBand);
+      const double* l = &left_[kBand * i + (kBand - count)];
+      const double* w_prev = w + kAxes * (i - count);
+      for (int a = 0; a < kAxes; ++a) {
+        double s = g[kAxes * i + a];
+        for (int j = 0; j < count; ++j) s -= l[j] * w_prev[kAxes * j + a];
+        w[kAxes * i + a] = s * inv_diag_[i];
       }
     }
   }
@@ -74,6 +92,8 @@ class SmoothnessPreconditioner {
   int n_ = 0;
   std::vector<double> l_;
   std::vector<double> inv_diag_;
+  std::vector<double> below_;  // below_[kBand i + j] = L(i + 1 + j, i)
+  std::vector<double> left_;   // left_[kBand i + j] = L(i, i - kBand + j)
 };
 
 struct Problem {
@@ -93,14 +113,31 @@ struct Problem {
   std::vector<double> best_y;
 };
 
-// Control points from the optimisation variables y.
-void scatter(Problem& pb, const double* y) {
-  const int axes = pb.axes;
-  pb.precond->applyInverseTransposed(y, pb.work.data(), axes);
+// Control points from the optimisation variables y (kAxes = Problem::axes).
+template <int kAxes>
+void scatterAxes(Problem& pb, const double* y) {
+  pb.precond->applyInverseTransposed<kAxes>(y, pb.work.data());
   const std::vector<int>& idx = *pb.free_points;
   for (size_t k = 0; k < idx.size(); ++k) {
-    for (int a = 0; a < axes; ++a) pb.q(a, idx[k]) = pb.q_start(a, k) + pb.work[axes * k + a];
+    for (int a = 0; a < kAxes; ++a) pb.q(a, idx[k]) = pb.q_start(a, k) + pb.work[kAxes * k + a];
   }
+}
+
+void scatter(Problem& pb, const double* y) {
+  if (pb.axes == 2)
+    scatterAxes<2>(pb, y);
+  else
+    scatterAxes<3>(pb, y);
+}
+
+// The gradient in y from the gradient in the control points (pb.grad).
+template <int kAxes>
+void gatherGradient(Problem& pb, double* g) {
+  const std::vector<int>& idx = *pb.free_points;
+  for (size_t k = 0; k < idx.size(); ++k) {
+    for (int a = 0; a < kAxes; ++a) pb.work2[kAxes * k + a] = pb.grad(a, idx[k]);
+  }
+  pb.precond->applyInverse<kAxes>(pb.work2.data(), g);
 }
 
 double objective(unsigned n, const double* y, double* g, void* data) {
@@ -109,12 +146,10 @@ double objective(unsigned n, const double* y, double* g, void* data) {
   const CostTerms t =
       pb->cost->evaluate(pb->q, pb->dt, g ? &pb->grad : nullptr, pb->first, pb->last);
   if (g) {
-    const std::vector<int>& idx = *pb->free_points;
-    const int axes = pb->axes;
-    for (size_t k = 0; k < idx.size(); ++k) {
-      for (int a = 0; a < axes; ++a) pb->work2[axes * k + a] = pb->grad(a, idx[k]);
-    }
-    pb->precond->applyInverse(pb->work2.data(), g, axes);
+    if (pb->axes == 2)
+      gatherGradient<2>(*pb, g);
+    else
+      gatherGradient<3>(*pb, g);
     for (unsigned i = 0; i < n; ++i) g[i] *= pb->scale;
   }
   ++pb->evaluations;

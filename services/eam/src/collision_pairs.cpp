@@ -148,7 +148,6 @@ std::vector<CollisionStretch> findCollisionStretches(const UniformBspline& splin
       sample.segment = i;
       sample.s = s;
       sample.point = c.col(0) + tl * (c.col(1) + tl * (c.col(2) + tl * c.col(3)));
-      sample.velocity = c.col(1) + tl * (2.0 * c.col(2) + tl * 3.0 * c.col(3));
       const Eigen::Vector3i cell = grid.localIndexOf(sample.point);
       const bool in_window = grid.inWindow(cell);
       const int64_t idx = in_window ? grid.linearIndex(cell) : 0;
@@ -174,6 +173,8 @@ std::vector<CollisionStretch> findCollisionStretches(const UniformBspline& splin
           run.t_before = have_free ? last_free_t : 0.0;
           in_run = true;
         }
+        // Only blocked samples keep their velocity (the anchor pairs' travel direction).
+        sample.velocity = c.col(1) + tl * (2.0 * c.col(2) + tl * 3.0 * c.col(3));
         run.blocked.push_back(sample);
       } else {
         if (in_run) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -23,12 +24,19 @@ class VoxelGrid {
   int64_t numCells() const { return static_cast<int64_t>(cells_.size()); }
   bool valid() const { return !cells_.empty(); }
 
-  // Global voxel index of a world point: floor(p / resolution).
-  Eigen::Vector3i globalIndexOf(const Eigen::Vector3d& p) const;
+  // Global voxel index of a world point: floor(p / resolution). Inline, with centerOfLocal:
+  // every collision check and search calls them per sample or cell.
+  Eigen::Vector3i globalIndexOf(const Eigen::Vector3d& p) const {
+    return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / resolution_)),
+                           static_cast<int>(std::floor(p.y() / resolution_)),
+                           static_cast<int>(std::floor(p.z() / resolution_)));
+  }
   Eigen::Vector3i localIndexOf(const Eigen::Vector3d& p) const {
     return globalIndexOf(p) - origin_;
   }
-  Eigen::Vector3d centerOfLocal(const Eigen::Vector3i& local) const;
+  Eigen::Vector3d centerOfLocal(const Eigen::Vector3i& local) const {
+    return ((origin_ + local).cast<double>() + Eigen::Vector3d::Constant(0.5)) * resolution_;
+  }
   bool inWindow(const Eigen::Vector3i& local) const {
     return local.x() >= 0 && local.y() >= 0 && local.z() >= 0 && local.x() < size_.x() &&
            local.y() < size_.y() && local.z() < size_.z();
