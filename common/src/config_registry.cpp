@@ -179,7 +179,7 @@ std::vector<KeySpec> buildKeys() {
                     "camera has not looked (0: unknown space is free everywhere)")),
       optional(real("som.unknown_near_radius_m", 0.0, 50.0, "2.5",
                     "... a cell whose centre lies within this distance of the start")),
-      optional(real("som.clearance_cost_cells", 0.0, 100.0, "0.0",
+      optional(real("som.clearance_cost_cells", 0.0, 100.0, "5.0",
                     "A* cost (in cell steps) of a cell next to the inflated obstacles, so that the "
                     "path keeps to the middle of wide gaps (0: off)")),
       optional(real("som.clearance_width_m", 0.05, 2.0, "0.3",
@@ -187,6 +187,9 @@ std::vector<KeySpec> buildKeys() {
       optional(real("som.clearance_free_radius_m", 0.0, 50.0, "2.5",
                     "... and none within this distance of the start, where the start state "
                     "decides the way")),
+      optional(flag("som.clearance_compare", "true",
+                    "... and plan along both that path and the shortest, keeping the answer of "
+                    "lower cost (jerk energy + time_weight x duration); false: prefer that path")),
       optional(real("som.lead_min_speed_mps", 0.0, 100.0, "1.0",
                     "A start at least this fast whose A* path turns away sharply also tries a path "
                     "that first goes on ahead; the faster verified answer wins")),

@@ -58,12 +58,13 @@ void SomNode::onPlanRequest(const plan_request_t& req) {
   char split[320];
   std::snprintf(split, sizeof(split),
                 "A* %.2f ms, corridor %.2f ms (%d polytopes), optimisation %.2f ms (%d evals), "
-                "verification %.2f ms%s%s",
+                "verification %.2f ms%s%s%s",
                 t.astar.wall_us * 1e-3, t.corridor.wall_us * 1e-3,
                 static_cast<int>(last_.corridor.polytopes.size()), t.optimize.wall_us * 1e-3,
                 last_.optimizer_evaluations, t.verify.wall_us * 1e-3,
                 last_.check_margin_retries > 0 ? "; planned again, off the arbiter's margin" : "",
-                leadPathNote(last_));
+                leadPathNote(last_),
+                last_.clearance_taken > 0 ? "; along the path that keeps clear (cheaper)" : "");
   result.status = last_.ok() ? plan_result_t::STATUS_OK : plan_result_t::STATUS_FAILED;
   result.reason = toWireReason(last_.status);
   result.detail =

@@ -155,7 +155,8 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
     step.addTo(&out.timings.astar);
     return found.status;
   };
-  bool keep_clear = static_cast<bool>(clearance_cost);
+  const bool compare_clear = static_cast<bool>(clearance_cost) && p.clearance.compare;
+  bool keep_clear = static_cast<bool>(clearance_cost) && !compare_clear;
   AStarResult::Status found = searchPath(keep_clear);
   if (keep_clear &&
       (found == AStarResult::Status::kNoPath || found == AStarResult::Status::kBudgetExceeded)) {
@@ -282,6 +283,27 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
     return failed;
   };
   std::optional<PlanStatus> failed = planAlongPath();
+  if (compare_clear) {
+    // The answer along the path that keeps clear, when that path differs; the cheaper of the
+    // two verified answers by the optimiser's measure (energy + time weight x duration).
+    const std::vector<Eigen::Vector3d> shortest_path = out.path;
+    const bool shortest_ok = !failed && !entersMargin();
+    PlanOutput along_shortest = out;
+    if (searchPath(true) == AStarResult::Status::kFound && out.path != shortest_path) {
+      const std::optional<PlanStatus> failed_clear = planAlongPath();
+      const bool clear_ok = !failed_clear && !entersMargin();
+      const double cost_clear = out.cost_control + out.cost_time;
+      const double cost_shortest = along_shortest.cost_control + along_shortest.cost_time;
+      if (clear_ok && (!shortest_ok || cost_clear < cost_shortest)) {
+        failed = std::nullopt;
+        ++out.clearance_taken;
+      } else {
+        out = withEffortOf(std::move(along_shortest), out);
+      }
+    } else {
+      out = withEffortOf(std::move(along_shortest), out);
+    }
+  }
   // The clearance cost is a preference: where its way gives no answer (a fast start may not
   // turn to the wider gap), or one the arbiter would refuse, the shortest way may do better.
   if (keep_clear && (failed || entersMargin())) {

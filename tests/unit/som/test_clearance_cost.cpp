@@ -4,6 +4,11 @@
 // trajectory, not from the planner.
 #include <gtest/gtest.h>
 
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
 #include "mmh/common/grid_astar.hpp"
 #include "mmh/som/clearance_cost.hpp"
 #include "mmh/som/planner.hpp"
@@ -109,7 +114,7 @@ TEST(SomPlanner, FliesThroughTheWideGapWithTheClearanceCost) {
   const auto w = wallWithNarrowAndWideGaps();
   const auto start = som_test::atRest(w.start);
   mmh::som::SomParams params;
-  params.clearance = {10.0, 0.3, 2.5};
+  params.clearance = {10.0, 0.3, 2.5, false};  // the path that keeps clear preferred
   const auto out = mmh::som::Planner(params).plan(*w.grid, start, w.target);
   ASSERT_EQ(out.status, mmh::PlanStatus::kOk) << out.detail;
   EXPECT_EQ(gapOfTrajectory(out.trajectory), Gap::kWide);
@@ -124,7 +129,7 @@ TEST(SomPlanner, FallsBackToTheShortestPathWhenAFastStartCannotTurnToTheWideGap)
   mmh::KinematicState start = som_test::atRest(Vector3d(2.0, 0.0, 1.2));
   start.velocity = Vector3d(3.0, 0.0, 0.0);
   mmh::som::SomParams params;
-  params.clearance = {10.0, 0.3, 2.5};
+  params.clearance = {10.0, 0.3, 2.5, false};
   const auto out = mmh::som::Planner(params).plan(*w.grid, start, w.target);
   ASSERT_EQ(out.status, mmh::PlanStatus::kOk) << out.detail;
   EXPECT_EQ(out.clearance_fallbacks, 1);
@@ -138,4 +143,76 @@ TEST(SomPlanner, FallsBackToTheShortestPathWhenAFastStartCannotTurnToTheWideGap)
   ASSERT_EQ(from_rest.status, mmh::PlanStatus::kOk) << from_rest.detail;
   EXPECT_EQ(from_rest.clearance_fallbacks, 0);
   EXPECT_EQ(gapOfTrajectory(from_rest.trajectory), Gap::kWide);
+}
+
+namespace {
+
+// SOM's own measure of an answer: jerk energy + time weight x duration.
+double costOf(const mmh::som::PlanOutput& out) {
+  return out.cost_control + out.cost_time;
+}
+
+// The three ways to use the clearance cost on one request: the shortest path only (cost off),
+// the path that keeps clear preferred, and both compared.
+struct ThreeWays {
+  mmh::som::PlanOutput shortest, preferred, compared;
+};
+
+ThreeWays planThreeWays(const som_test::World& w, const mmh::KinematicState& start) {
+  mmh::som::SomParams off, prefer, compare;
+  off.clearance.cost_cells = 0.0;
+  prefer.clearance = {10.0, 0.3, 2.5, false};
+  compare.clearance = {10.0, 0.3, 2.5, true};
+  return {mmh::som::Planner(off).plan(*w.grid, start, w.target),
+          mmh::som::Planner(prefer).plan(*w.grid, start, w.target),
+          mmh::som::Planner(compare).plan(*w.grid, start, w.target)};
+}
+
+}  // namespace
+
+TEST(SomPlanner, ComparedTakesTheNarrowGapOnTheStraightLineWhenItIsTheCheaperWay) {
+  // From rest, straight through the narrow gap is faster than round by the wide one (the
+  // preference for clearance alone takes the slower way).
+  const auto w = wallWithNarrowAndWideGaps();
+  const ThreeWays a = planThreeWays(w, som_test::atRest(w.start));
+  ASSERT_TRUE(a.shortest.ok() && a.preferred.ok() && a.compared.ok()) << a.compared.detail;
+  ASSERT_EQ(gapOfTrajectory(a.shortest.trajectory), Gap::kNarrow);
+  ASSERT_EQ(gapOfTrajectory(a.preferred.trajectory), Gap::kWide);
+  ASSERT_LT(costOf(a.shortest), costOf(a.preferred));
+  EXPECT_EQ(gapOfTrajectory(a.compared.trajectory), Gap::kNarrow);
+  EXPECT_EQ(a.compared.clearance_taken, 0);
+  EXPECT_DOUBLE_EQ(costOf(a.compared), costOf(a.shortest));
+  EXPECT_LT(a.compared.trajectory.duration(), a.preferred.trajectory.duration());
+}
+
+TEST(SomPlanner, ComparedKeepsTheCheaperOfTheTwoAnswersInRandomForests) {
+  // Pillars of radius 0.15-0.5 m scattered between start and target, 20 forests: the compared
+  // answer is the cheaper of the other two whenever both answer, and answers whenever either
+  // does. Both outcomes occur, so both branches of the choice are exercised.
+  std::mt19937 rng(20261207);
+  std::uniform_real_distribution<double> ux(2.0, 10.0), uy(-3.0, 3.0), ur(0.15, 0.5);
+  int clear_taken = 0, shortest_kept = 0;
+  for (int forest = 0; forest < 20; ++forest) {
+    std::vector<Eigen::Vector3d> pillars;  // x, y, radius
+    for (int k = 0; k < 14; ++k) pillars.emplace_back(ux(rng), uy(rng), ur(rng));
+    const auto w = som_test::makeWorld([&](const Vector3d& p) {
+      for (const auto& c : pillars)
+        if (som_test::inCylinder(p, c.x(), c.y(), c.z())) return true;
+      return false;
+    });
+    if (w.grid->isBlockedPoint(w.start) || w.grid->isBlockedPoint(w.target)) continue;
+    const ThreeWays a = planThreeWays(w, som_test::atRest(w.start));
+    SCOPED_TRACE("forest " + std::to_string(forest));
+    EXPECT_EQ(a.compared.ok(), a.shortest.ok() || a.preferred.ok());
+    if (!a.compared.ok()) continue;
+    double best = std::numeric_limits<double>::infinity();
+    if (a.shortest.ok()) best = std::min(best, costOf(a.shortest));
+    if (a.preferred.ok()) best = std::min(best, costOf(a.preferred));
+    EXPECT_NEAR(costOf(a.compared), best, 1e-9 * best);
+    (a.compared.clearance_taken > 0 ? clear_taken : shortest_kept)++;
+    for (double s = 0.0; s <= a.compared.trajectory.duration(); s += 2e-3)
+      ASSERT_FALSE(w.grid->isOccupiedPoint(a.compared.trajectory.position(s))) << "at " << s;
+  }
+  EXPECT_GT(clear_taken, 0);
+  EXPECT_GT(shortest_kept, 0);
 }

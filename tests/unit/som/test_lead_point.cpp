@@ -75,6 +75,7 @@ TEST(LeadPoint, TheAnswerOfAFastStartTurningBackIsNeverSlowerWithIt) {
   s.position = w.start;
   s.velocity = Vector3d(3.0, 0.0, 0.0);
   mmh::som::SomParams with;
+  with.clearance.cost_cells = 0.0;  // one path per candidate: the lead path alone is under test
   mmh::som::SomParams without = with;
   without.lead.reach = 0.0;
   mmh::som::Planner planner_with(with), planner_without(without);

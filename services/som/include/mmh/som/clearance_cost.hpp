@@ -15,11 +15,14 @@
 namespace mmh::som {
 
 struct ClearanceCostParams {
-  double cost_cells = 0.0;  // extra A* cost of a cell next to the inflated obstacles (0: off)
+  double cost_cells = 5.0;  // extra A* cost of a cell next to the inflated obstacles (0: off)
   double width_m = 0.3;     // ... falling linearly to 0 at this clearance from them
   // None within this distance of the start: there the start state decides the way, and a cost
   // would only push the path into the unseen space beside the vehicle.
   double free_radius_m = 2.5;
+  // Plan along both paths (with and without the cost) and keep the cheaper answer by the
+  // optimiser's own measure; false: prefer the path that keeps clear.
+  bool compare = true;
 };
 
 class ClearanceCost {

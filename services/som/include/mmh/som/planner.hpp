@@ -49,6 +49,8 @@ struct PlanOutput {
   // Paths searched again without the clearance cost (clearance_cost.hpp): its search found no
   // path, or no verified answer along it.
   int clearance_fallbacks = 0;
+  // Answers along the path that keeps clear chosen over the shortest (clearance.compare).
+  int clearance_taken = 0;
   int64_t astar_expansions = 0;
   VerifyReport verify;
   PlanTimings timings;
