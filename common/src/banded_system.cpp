@@ -1,6 +1,7 @@
 #include "mmh/common/banded_system.hpp"
 
 #include <algorithm>
+#include <type_traits>
 
 namespace mmh {
 
@@ -103,40 +104,41 @@ void BandedSystem::solveTransposedColumns(double* x, Eigen::Index ld) const {
   }
 }
 
-void BandedSystem::solve(Eigen::Ref<Eigen::MatrixXd> b) const {
+namespace {
+
+// Calls solve(std::integral_constant<int, k>, first column, stride) for b's columns in groups of
+// k <= 3.
+template <typename Solve>
+void forColumnGroups(Eigen::Ref<Eigen::MatrixXd> b, const Solve& solve) {
   const Eigen::Index ld = b.outerStride();
   for (Eigen::Index c = 0; c < b.cols(); c += 3) {
     double* x = b.data() + c * ld;
     switch (std::min<Eigen::Index>(3, b.cols() - c)) {
       case 3:
-        solveColumns<3>(x, ld);
+        solve(std::integral_constant<int, 3>{}, x, ld);
         break;
       case 2:
-        solveColumns<2>(x, ld);
+        solve(std::integral_constant<int, 2>{}, x, ld);
         break;
       default:
-        solveColumns<1>(x, ld);
+        solve(std::integral_constant<int, 1>{}, x, ld);
         break;
     }
   }
 }
 
+}  // namespace
+
+void BandedSystem::solve(Eigen::Ref<Eigen::MatrixXd> b) const {
+  forColumnGroups(b, [this](auto cols, double* x, Eigen::Index ld) {
+    solveColumns<decltype(cols)::value>(x, ld);
+  });
+}
+
 void BandedSystem::solveTransposed(Eigen::Ref<Eigen::MatrixXd> b) const {
-  const Eigen::Index ld = b.outerStride();
-  for (Eigen::Index c = 0; c < b.cols(); c += 3) {
-    double* x = b.data() + c * ld;
-    switch (std::min<Eigen::Index>(3, b.cols() - c)) {
-      case 3:
-        solveTransposedColumns<3>(x, ld);
-        break;
-      case 2:
-        solveTransposedColumns<2>(x, ld);
-        break;
-      default:
-        solveTransposedColumns<1>(x, ld);
-        break;
-    }
-  }
+  forColumnGroups(b, [this](auto cols, double* x, Eigen::Index ld) {
+    solveTransposedColumns<decltype(cols)::value>(x, ld);
+  });
 }
 
 }  // namespace mmh

@@ -44,15 +44,12 @@ class SmoothnessPreconditioner {
     }
     inv_diag_.resize(n);
     for (int i = 0; i < n; ++i) inv_diag_[i] = 1.0 / at(i, i);
-    // L's off-diagonal entries by row and by column, each contiguous and in the order the
-    // substitutions use them.
+    // L's columns below the diagonal, contiguous in the order the back substitution uses them
+    // (its rows are contiguous in l_ already).
     below_.assign(static_cast<size_t>(n) * kBand, 0.0);
-    left_.assign(static_cast<size_t>(n) * kBand, 0.0);
     for (int i = 0; i < n; ++i) {
       for (int k = i + 1; k <= std::min(n - 1, i + kBand); ++k)
         below_[kBand * i + (k - i - 1)] = at(k, i);
-      for (int k = std::max(0, i - kBand); k < i; ++k)
-        left_[kBand * i + (k - i + kBand)] = at(i, k);
     }
   }
   // z = L^{-T} y (back substitution), per axis: y and z hold kAxes values per point. The axis
@@ -76,7 +73,7 @@ class SmoothnessPreconditioner {
   void applyInverse(const double* g, double* w) const {
     for (int i = 0; i < n_; ++i) {
       const int count = std::min(i, kBand);
-      const double* l = &left_[kBand * i + (kBand - count)];
+      const double* l = &l_[static_cast<size_t>(i) * (kBand + 1) + (kBand - count)];
       const double* w_prev = w + kAxes * (i - count);
       for (int a = 0; a < kAxes; ++a) {
         double s = g[kAxes * i + a];
@@ -87,13 +84,15 @@ class SmoothnessPreconditioner {
   }
 
  private:
-  double& at(int i, int j) { return l_[static_cast<size_t>(i) * (kBand + 1) + (i - j)]; }
-  double at(int i, int j) const { return l_[static_cast<size_t>(i) * (kBand + 1) + (i - j)]; }
+  // Row i keeps L(i, i - kBand) .. L(i, i) contiguously, in the order of the columns.
+  double& at(int i, int j) { return l_[static_cast<size_t>(i) * (kBand + 1) + (kBand - (i - j))]; }
+  double at(int i, int j) const {
+    return l_[static_cast<size_t>(i) * (kBand + 1) + (kBand - (i - j))];
+  }
   int n_ = 0;
   std::vector<double> l_;
   std::vector<double> inv_diag_;
   std::vector<double> below_;  // below_[kBand i + j] = L(i + 1 + j, i)
-  std::vector<double> left_;   // left_[kBand i + j] = L(i, i - kBand + j)
 };
 
 struct Problem {

@@ -286,10 +286,9 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
   if (compare_clear) {
     // The answer along the path that keeps clear, when that path differs; the cheaper of the
     // two verified answers by the optimiser's measure (energy + time weight x duration).
-    const std::vector<Eigen::Vector3d> shortest_path = out.path;
     const bool shortest_ok = !failed && !entersMargin();
     PlanOutput along_shortest = out;
-    if (searchPath(true) == AStarResult::Status::kFound && out.path != shortest_path) {
+    if (searchPath(true) == AStarResult::Status::kFound && out.path != along_shortest.path) {
       const std::optional<PlanStatus> failed_clear = planAlongPath();
       const bool clear_ok = !failed_clear && !entersMargin();
       const double cost_clear = out.cost_control + out.cost_time;
@@ -300,9 +299,7 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
       } else {
         out = withEffortOf(std::move(along_shortest), out);
       }
-    } else {
-      out = withEffortOf(std::move(along_shortest), out);
-    }
+    }  // else `out` is still the shortest path's answer, with the second search's effort added
   }
   // The clearance cost is a preference: where its way gives no answer (a fast start may not
   // turn to the wider gap), or one the arbiter would refuse, the shortest way may do better.
