@@ -6,6 +6,8 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <random>
+#include <vector>
 
 #include "mmh/common/trajectory.hpp"
 #include "mmh/common/voxel_grid.hpp"
@@ -46,6 +48,20 @@ inline bool inCylinder(const Eigen::Vector3d& p, double x, double y, double r) {
 
 inline bool inBox(const Eigen::Vector3d& p, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
+}
+
+// 14 pillars of radius 0.15-0.5 m scattered between start and target (x in [2, 10], y in
+// [-3, 3]), the same for the same seed.
+inline World randomPillars(unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> ux(2.0, 10.0), uy(-3.0, 3.0), ur(0.15, 0.5);
+  std::vector<Eigen::Vector3d> pillars;  // x, y, radius
+  for (int k = 0; k < 14; ++k) pillars.emplace_back(ux(rng), uy(rng), ur(rng));
+  return makeWorld([&](const Eigen::Vector3d& p) {
+    for (const auto& c : pillars)
+      if (inCylinder(p, c.x(), c.y(), c.z())) return true;
+    return false;
+  });
 }
 
 inline World pillars() {

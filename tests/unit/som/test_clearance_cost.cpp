@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <limits>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -189,17 +188,9 @@ TEST(SomPlanner, ComparedKeepsTheCheaperOfTheTwoAnswersInRandomForests) {
   // Pillars of radius 0.15-0.5 m scattered between start and target, 20 forests: the compared
   // answer is the cheaper of the other two whenever both answer, and answers whenever either
   // does. Both outcomes occur, so both branches of the choice are exercised.
-  std::mt19937 rng(20261207);
-  std::uniform_real_distribution<double> ux(2.0, 10.0), uy(-3.0, 3.0), ur(0.15, 0.5);
   int clear_taken = 0, shortest_kept = 0;
-  for (int forest = 0; forest < 20; ++forest) {
-    std::vector<Eigen::Vector3d> pillars;  // x, y, radius
-    for (int k = 0; k < 14; ++k) pillars.emplace_back(ux(rng), uy(rng), ur(rng));
-    const auto w = som_test::makeWorld([&](const Vector3d& p) {
-      for (const auto& c : pillars)
-        if (som_test::inCylinder(p, c.x(), c.y(), c.z())) return true;
-      return false;
-    });
+  for (unsigned forest = 0; forest < 20; ++forest) {
+    const auto w = som_test::randomPillars(20261207 + forest);
     if (w.grid->isBlockedPoint(w.start) || w.grid->isBlockedPoint(w.target)) continue;
     const ThreeWays a = planThreeWays(w, som_test::atRest(w.start));
     SCOPED_TRACE("forest " + std::to_string(forest));

@@ -55,9 +55,9 @@ class SomNodeTest : public ::testing::Test {
     test_ctx_ = std::make_unique<mmh::ServiceContext>(*lcm_, "tester", "T_");
     test_ctx_->subscribe(mmh::channels::kPlanResult, &ResultSink::on, &sink_);
   }
-  void sendMap(const som_test::World& w) {
-    mmh::local_map_t map = mmh::makeKeyframe(*w.grid, 1);
-    map.header.utime = 500'000;
+  void sendMap(const som_test::World& w, int64_t seq = 1) {
+    mmh::local_map_t map = mmh::makeKeyframe(*w.grid, seq);
+    map.header.utime = 500'000 + seq;
     test_ctx_->publish(mmh::channels::kLocalMap, map);
     drain(*lcm_);
   }
@@ -154,4 +154,34 @@ TEST_F(SomNodeTest, NaNRequestIsRejectedWithoutCrash) {
   drain(*lcm_);
   ASSERT_EQ(sink_.results.size(), 2u);
   EXPECT_EQ(sink_.results[1].reason, mmh::plan_result_t::REASON_BAD_INPUT);
+}
+
+TEST_F(SomNodeTest, TheDetailSaysWhenThePathThatKeepsClearWasTaken) {
+  // Hand-made worlds and random forests until the node has both taken the path that keeps clear
+  // and kept the shortest one: its detail names the first only.
+  const std::string note = "along the path that keeps clear (cheaper)";
+  bool seen_taken = false, seen_kept = false;
+  int64_t id = 1;
+  std::vector<som_test::World> worlds{som_test::wallWithGap(), som_test::sBend(),
+                                      som_test::pillars()};
+  for (unsigned seed = 20261207; seed < 20261227; ++seed)
+    worlds.push_back(som_test::randomPillars(seed));
+  for (size_t k = 0; k < worlds.size() && !(seen_taken && seen_kept); ++k) {
+    const som_test::World& w = worlds[k];
+    if (w.grid->isBlockedPoint(w.start) || w.grid->isBlockedPoint(w.target)) continue;
+    sink_.results.clear();
+    sendMap(w, id);  // a new keyframe per world
+    auto req = request(id, w.start, w.target);
+    req.map_seq = id++;
+    test_ctx_->publish(mmh::channels::kPlanRequestSom, req);
+    drain(*lcm_);
+    ASSERT_EQ(sink_.results.size(), 1u);
+    if (sink_.results[0].status != mmh::plan_result_t::STATUS_OK) continue;
+    const bool taken = node_->lastOutput().clearance_taken > 0;
+    EXPECT_EQ(sink_.results[0].detail.find(note) != std::string::npos, taken)
+        << "world " << k << ": " << sink_.results[0].detail;
+    (taken ? seen_taken : seen_kept) = true;
+  }
+  EXPECT_TRUE(seen_taken);
+  EXPECT_TRUE(seen_kept);
 }
