@@ -190,6 +190,9 @@ std::vector<KeySpec> buildKeys() {
       optional(flag("som.clearance_compare", "true",
                     "... and plan along both that path and the shortest, keeping the answer of "
                     "lower cost (jerk energy + time_weight x duration); false: prefer that path")),
+      optional(flag("som.clearance_compare_parallel", "false",
+                    "... planning the two paths on two threads: the same answer, sooner on a "
+                    "computer with a core to spare, later on one whose cores are busy")),
       optional(real("som.lead_min_speed_mps", 0.0, 100.0, "1.0",
                     "A start at least this fast whose A* path turns away sharply also tries a path "
                     "that first goes on ahead; the faster verified answer wins")),

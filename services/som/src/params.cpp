@@ -31,6 +31,7 @@ SomParams loadSomParams(const Config& c) {
   p.clearance.width_m = c.getDouble("som.clearance_width_m");
   p.clearance.free_radius_m = c.getDouble("som.clearance_free_radius_m");
   p.clearance.compare = c.getBool("som.clearance_compare");
+  p.clearance.compare_in_parallel = c.getBool("som.clearance_compare_parallel");
   p.lead.min_speed_mps = c.getDouble("som.lead_min_speed_mps");
   p.lead.min_turn_deg = c.getDouble("som.lead_min_turn_deg");
   p.lead.reach = c.getDouble("som.lead_reach");

@@ -2,7 +2,8 @@
 # Lock-step flights of every arbiter policy (and one with lossy maps) must match the results in
 # lockstep_golden.txt exactly (and refuse no message for its time): flight time, distance, energy,
 # planning calls per mode, stops and the digest of every committed trajectory. A restructuring commit must leave them unchanged; a
-# commit that changes behaviour on purpose regenerates the file and says why:
+# commit that changes behaviour on purpose regenerates the file and says why (one flight is flown
+# again with SOM's two paths on two threads and must match its golden line too):
 #   tests/integration/stack/lockstep_golden.sh build --update
 set -euo pipefail
 build=$1
@@ -48,4 +49,15 @@ if ! diff -u "$golden" "$actual"; then
   echo "If the change of behaviour is intended, regenerate with: $0 BUILD --update"
   exit 1
 fi
-echo "PASS: ${#flights[@]} lock-step flights identical to $golden"
+# SOM's two paths planned on two threads must fly the same flight as planned in turn (every SOM
+# request of the som policy's flight, many of them with two differing paths).
+same="--density 0.1 --seed 7 --policy som"
+# shellcheck disable=SC2086
+parallel=$("$build/bin/mmh-stack" $same --set som.clearance_compare_parallel=true --log-level warn \
+  --json 2>/dev/null | strip || true)
+if [ "$same | $parallel" != "$(grep -F -- "$same |" "$golden")" ]; then
+  echo "FAIL: mmh-stack $same with SOM's paths on two threads: $parallel"
+  echo "      expected the golden line: $(grep -F -- "$same |" "$golden")"
+  exit 1
+fi
+echo "PASS: ${#flights[@]} lock-step flights identical to $golden, and SOM on two threads the same"

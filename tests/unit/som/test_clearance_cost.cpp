@@ -4,6 +4,9 @@
 // trajectory, not from the planner.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+#include <cmath>
+
 #include <limits>
 #include <string>
 #include <vector>
@@ -206,4 +209,53 @@ TEST(SomPlanner, ComparedKeepsTheCheaperOfTheTwoAnswersInRandomForests) {
   }
   EXPECT_GT(clear_taken, 0);
   EXPECT_GT(shortest_kept, 0);
+}
+
+TEST(SomPlanner, TheTwoPathsPlannedOnTwoThreadsGiveTheAnswerOfOneThread) {
+  // The comparison's second path on its own thread (som.clearance_compare_parallel) is the same
+  // work as planned in turn: in 20 forests, from rest and from a fast start turned 60 degrees
+  // off the target (where the path from a point ahead is tried too), the same answer to the bit,
+  // the same failure, and the same effort counted.
+  mmh::som::SomParams in_turn, in_parallel;
+  in_turn.clearance.compare_in_parallel = false;
+  in_parallel.clearance.compare_in_parallel = true;
+  mmh::som::Planner one_thread(in_turn), two_threads(in_parallel);
+  int answered = 0, clear_taken = 0, lead_paths = 0;
+  for (unsigned forest = 0; forest < 20; ++forest) {
+    const auto w = som_test::randomPillars(20261208 + forest);
+    if (w.grid->isBlockedPoint(w.start) || w.grid->isBlockedPoint(w.target)) continue;
+    mmh::KinematicState fast = som_test::atRest(w.start);
+    fast.velocity = 2.5 * (Eigen::AngleAxisd(M_PI / 3.0, Eigen::Vector3d::UnitZ()) *
+                           (w.target - w.start).normalized());
+    for (const mmh::KinematicState& start : {som_test::atRest(w.start), fast}) {
+      SCOPED_TRACE("forest " + std::to_string(forest) + ", start speed " +
+                   std::to_string(start.velocity.norm()));
+      one_thread.prepare(*w.grid);
+      two_threads.prepare(*w.grid);
+      const mmh::som::PlanOutput a = one_thread.plan(*w.grid, start, w.target);
+      const mmh::som::PlanOutput b = two_threads.plan(*w.grid, start, w.target);
+      ASSERT_EQ(a.status, b.status);
+      EXPECT_EQ(a.detail, b.detail);
+      EXPECT_EQ(a.path, b.path);
+      EXPECT_EQ(a.astar_expansions, b.astar_expansions);
+      EXPECT_EQ(a.optimizer_evaluations, b.optimizer_evaluations);
+      EXPECT_EQ(a.check_margin_retries, b.check_margin_retries);
+      EXPECT_EQ(a.lead_paths, b.lead_paths);
+      EXPECT_EQ(a.clearance_taken, b.clearance_taken);
+      if (!a.ok()) continue;
+      ++answered;
+      clear_taken += a.clearance_taken;
+      lead_paths += a.lead_paths;
+      EXPECT_EQ(a.cost_total, b.cost_total);
+      ASSERT_EQ(a.trajectory.pieces().size(), b.trajectory.pieces().size());
+      for (size_t i = 0; i < a.trajectory.pieces().size(); ++i) {
+        EXPECT_EQ(a.trajectory.pieces()[i].duration, b.trajectory.pieces()[i].duration);
+        EXPECT_EQ(a.trajectory.pieces()[i].coeffs, b.trajectory.pieces()[i].coeffs);
+      }
+    }
+  }
+  // Both ways won somewhere, and fast starts tried the path from a point ahead.
+  EXPECT_GT(answered, clear_taken);
+  EXPECT_GT(clear_taken, 0);
+  EXPECT_GT(lead_paths, 0);
 }

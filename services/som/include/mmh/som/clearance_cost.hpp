@@ -23,6 +23,9 @@ struct ClearanceCostParams {
   // Plan along both paths (with and without the cost) and keep the cheaper answer by the
   // optimiser's own measure; false: prefer the path that keeps clear.
   bool compare = true;
+  // ... the two paths planned on two threads at once: the same answer, sooner where a core is
+  // free, later where every core is busy (a second thread then waits its turn).
+  bool compare_in_parallel = false;
 };
 
 class ClearanceCost {
