@@ -84,6 +84,9 @@ bool entersCheckMargin(const Trajectory& traj, const VoxelGrid& grid, double che
   // same cells: a corner cut a few millimetres deep is met by one sample or by none.
   const double dt = collisionSampleStep(grid, traj);
   const double end = traj.duration();
+  // A cell within the check margin of an occupied cell is within the grid's own margin too when
+  // that is no smaller: the grid's blocked counts clear most cells without a look round them.
+  const bool grid_margin_covers = check_inflation_m <= grid.inflationRadius();
   bool leaving_start = true;
   Eigen::Vector3i last(INT32_MIN, INT32_MIN, INT32_MIN);
   for (double s = 0.0;; s += dt) {
@@ -91,7 +94,8 @@ bool entersCheckMargin(const Trajectory& traj, const VoxelGrid& grid, double che
     const Eigen::Vector3i cell = grid.localIndexOf(traj.position(at));
     if (cell != last) {
       last = cell;
-      const bool blocked = withinInflation(grid, cell, offsets);
+      const bool blocked = !(grid_margin_covers && grid.inWindow(cell) && !grid.isBlocked(cell)) &&
+                           withinInflation(grid, cell, offsets);
       if (leaving_start)
         leaving_start = blocked;
       else if (blocked)

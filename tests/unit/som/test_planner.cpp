@@ -342,11 +342,10 @@ TEST(SomPlanner, FencesTheArbitersMarginCellsWholeWhenTheirFacesDoNotKeepTheAnsw
 }
 
 // The arbiter's check margin (cells whose centres lie within 0.25 m of an occupied centre) on a
-// hand-made grid: one occupied cell at the origin's column.
+// hand-made grid: one occupied cell at the origin's column. The same answers whatever the grid's
+// own inflation: below the check margin the cells are looked round, at or above it the grid's
+// blocked counts clear most of them first.
 TEST(SomVerification, EnteringTheArbitersCheckMarginIsFoundAfterTheStartLeavesIt) {
-  mmh::VoxelGrid grid(0.1, Eigen::Vector3i(-20, -20, 0), Eigen::Vector3i(40, 40, 30));
-  for (int64_t i = 0; i < grid.numCells(); ++i) grid.setLinear(i, mmh::Occupancy::kFree);
-  grid.set(grid.localIndexOf(Vector3d(0.05, 0.05, 1.25)), mmh::Occupancy::kOccupied);
   auto line = [](const Vector3d& from, const Vector3d& to) {
     mmh::Piece p;
     p.duration = 1.0;
@@ -354,19 +353,32 @@ TEST(SomVerification, EnteringTheArbitersCheckMarginIsFoundAfterTheStartLeavesIt
     p.coeffs.col(1) = to - from;
     return mmh::Trajectory({p});
   };
-  // Past the cell 0.2 m to its side (cell centres 0.2 m apart): inside the margin.
-  EXPECT_TRUE(mmh::som::entersCheckMargin(
-      line(Vector3d(-1.0, 0.25, 1.25), Vector3d(1.0, 0.25, 1.25)), grid, 0.25));
-  // 0.3 m to its side: outside.
-  EXPECT_FALSE(mmh::som::entersCheckMargin(
-      line(Vector3d(-1.0, 0.35, 1.25), Vector3d(1.0, 0.35, 1.25)), grid, 0.25));
-  // A start inside the margin may leave it, but not come back.
-  EXPECT_FALSE(mmh::som::entersCheckMargin(
-      line(Vector3d(0.05, 0.25, 1.25), Vector3d(0.05, 1.0, 1.25)), grid, 0.25));
-  // Out of it and back in (0.2 m beside the cell): found.
-  mmh::Trajectory out_and_back = line(Vector3d(0.05, 0.25, 1.25), Vector3d(0.05, 1.0, 1.25));
-  out_and_back.append(line(Vector3d(0.05, 1.0, 1.25), Vector3d(0.25, 0.05, 1.25)).pieces()[0]);
-  EXPECT_TRUE(mmh::som::entersCheckMargin(out_and_back, grid, 0.25));
+  for (double grid_inflation_m : {0.0, 0.2, 0.25, 0.3, 0.5}) {
+    SCOPED_TRACE("grid inflation " + std::to_string(grid_inflation_m));
+    mmh::VoxelGrid grid(0.1, Eigen::Vector3i(-20, -20, 0), Eigen::Vector3i(40, 40, 30));
+    grid.setInflationRadius(grid_inflation_m);
+    for (int64_t i = 0; i < grid.numCells(); ++i) grid.setLinear(i, mmh::Occupancy::kFree);
+    grid.set(grid.localIndexOf(Vector3d(0.05, 0.05, 1.25)), mmh::Occupancy::kOccupied);
+    // Past the cell 0.2 m to its side (cell centres 0.2 m apart): inside the margin.
+    EXPECT_TRUE(mmh::som::entersCheckMargin(
+        line(Vector3d(-1.0, 0.25, 1.25), Vector3d(1.0, 0.25, 1.25)), grid, 0.25));
+    // 0.3 m to its side: outside.
+    EXPECT_FALSE(mmh::som::entersCheckMargin(
+        line(Vector3d(-1.0, 0.35, 1.25), Vector3d(1.0, 0.35, 1.25)), grid, 0.25));
+    // A start inside the margin may leave it, but not come back.
+    EXPECT_FALSE(mmh::som::entersCheckMargin(
+        line(Vector3d(0.05, 0.25, 1.25), Vector3d(0.05, 1.0, 1.25)), grid, 0.25));
+    // Out of it and back in (0.2 m beside the cell): found.
+    mmh::Trajectory out_and_back = line(Vector3d(0.05, 0.25, 1.25), Vector3d(0.05, 1.0, 1.25));
+    out_and_back.append(line(Vector3d(0.05, 1.0, 1.25), Vector3d(0.25, 0.05, 1.25)).pieces()[0]);
+    EXPECT_TRUE(mmh::som::entersCheckMargin(out_and_back, grid, 0.25));
+    // Diagonally past it, 0.2 m from its centre in x and y (0.28 m): outside; 0.1 and 0.2 m
+    // (0.22 m): inside.
+    EXPECT_FALSE(mmh::som::entersCheckMargin(
+        line(Vector3d(-1.0, 0.25, 1.05), Vector3d(1.0, 0.25, 1.05)), grid, 0.25));
+    EXPECT_TRUE(mmh::som::entersCheckMargin(
+        line(Vector3d(-1.0, 0.25, 1.15), Vector3d(1.0, 0.25, 1.15)), grid, 0.25));
+  }
 }
 
 // The arbiter lowers the speed when answers come late: the plan keeps to the request's limit;
