@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <limits>
 
 #include "mmh/common/collision_check.hpp"
 
@@ -109,7 +110,7 @@ AStarResult GridAStar::search(const VoxelGrid& grid, const Eigen::Vector3d& star
     open.push_back({f, static_cast<int32_t>(index)});
     std::push_heap(open.begin(), open.end(), heap_order);
   };
-  cells_[s_idx] = {0.f, -1, generation_};
+  cells_[s_idx] = {0.f, -1, generation_, 0.f};
   push(static_cast<float>(h_weight * octileDistance(s, g)), s_idx);
 
   // The 26 neighbour offsets with their step lengths.
@@ -152,12 +153,18 @@ AStarResult GridAStar::search(const VoxelGrid& grid, const Eigen::Vector3d& star
       if (!in_bounds(nb)) continue;
       const int64_t ni = cur + n.delta;
       if (closed(ni) || !traversable(nb, ni)) continue;
-      float step = n.step;
-      if (options.extra_step_cost) step += static_cast<float>(options.extra_step_cost(nb, ni));
-      const float ng = gc + step;
       CellState& cell = cells_[ni];
-      if ((cell.stamp & ~kClosedBit) == generation_ && cell.g <= ng) continue;
-      cell = {ng, static_cast<int32_t>(cur), generation_};
+      if ((cell.stamp & ~kClosedBit) != generation_) {  // first reached: not yet on the open list
+        const float extra =
+            options.extra_step_cost ? static_cast<float>(options.extra_step_cost(nb, ni)) : 0.f;
+        cell = {std::numeric_limits<float>::infinity(), -1, generation_, extra};
+      }
+      float step = n.step;
+      if (options.extra_step_cost) step += cell.extra;
+      const float ng = gc + step;
+      if (cell.g <= ng) continue;
+      cell.g = ng;
+      cell.parent = static_cast<int32_t>(cur);
       push(static_cast<float>(ng + h_weight * octileDistance(nb, g)), ni);
     }
   }

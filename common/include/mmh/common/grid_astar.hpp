@@ -53,11 +53,13 @@ class GridAStar {
 
  private:
   // Per-cell search state in one record (one cache line per neighbour visited), reused across
-  // searches (a generation stamp marks stale entries).
+  // searches (a generation stamp marks stale entries). `extra` is the cell's extra step cost,
+  // asked once per search when the cell is first reached, not once per edge into it.
   struct CellState {
     float g = 0.f;
     int32_t parent = -1;
     uint32_t stamp = 0;
+    float extra = 0.f;
   };
   std::vector<CellState> cells_;
   uint32_t generation_ = 0;
