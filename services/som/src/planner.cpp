@@ -30,12 +30,16 @@ class ScopeExit {
 Planner::Planner(const SomParams& params)
     : params_(params),
       vehicle_max_vel_mps_(params.max_vel_mps),
-      shortest_(params_),
-      clear_(params_) {}
+      shortest_(params_, astar_),
+      clear_(params_, params_.clearance.compare_in_parallel ? second_astar_ : astar_) {}
 
 void Planner::prepare(const VoxelGrid& grid) {
-  shortest_.prepare(grid);
-  if (params_.clearance.compare) clear_.prepare(grid);
+  const ClearanceCostParams& clearance = params_.clearance;
+  astar_.reserve(grid.numCells());
+  if (clearance.compare && clearance.compare_in_parallel) second_astar_.reserve(grid.numCells());
+  // The way that searches with the clearance cost: the second when the two are compared.
+  if (clearance.cost_cells > 0.0)
+    (clearance.compare ? clear_ : shortest_).prepareClearanceCost(grid);
 }
 
 PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,

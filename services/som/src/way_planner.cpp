@@ -36,13 +36,10 @@ StepCost sumOfCosts(StepCost a, StepCost b) {
 
 }  // namespace
 
-WayPlanner::WayPlanner(const SomParams& params)
-    : params_(params), optimizer_(params.optimizer, params.max_vel_mps, params.max_acc_mps2) {}
-
-void WayPlanner::prepare(const VoxelGrid& grid) {
-  astar_.reserve(grid.numCells());
-  if (params_.clearance.cost_cells > 0.0) clearance_cost_.reserve(grid.numCells());
-}
+WayPlanner::WayPlanner(const SomParams& params, GridAStar& astar)
+    : params_(params),
+      astar_(astar),
+      optimizer_(params.optimizer, params.max_vel_mps, params.max_acc_mps2) {}
 
 AStarResult::Status WayPlanner::searchPath(const WayRequest& request, bool keep_clear,
                                            PlanOutput* out) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "mmh/common/grid_astar.hpp"
 #include "mmh/common/plan_debug.hpp"
 #include "mmh/common/trajectory.hpp"
 #include "mmh/common/voxel_grid.hpp"
@@ -33,6 +34,10 @@ class Planner {
  private:
   SomParams params_;  // max_vel_mps: the speed limit of the current plan
   double vehicle_max_vel_mps_;
+  // A*'s per-cell search state (tens of MB for a large window): one, shared by both ways when
+  // they are planned in turn; a second for the way on its own thread.
+  GridAStar astar_;
+  GridAStar second_astar_;
   // The shortest path's way (and the only one without the comparison), and the way along the
   // path that keeps clear, which clearance.compare_in_parallel plans on a thread of its own.
   WayPlanner shortest_;

@@ -1,8 +1,8 @@
 // One way of answering a SOM request: A* from the start to the target (the shortest path, or the
 // path that keeps clear of the obstacles), then the safe flight corridor, the optimisation and
 // the verification along that path, with their retries. The planner owns two, so that the two
-// paths of its comparison can be planned at the same time: each has its own search, corridor and
-// optimiser state, and only reads the map.
+// paths of its comparison can be planned at the same time: each has its own corridor and
+// optimiser state (and then its own A* search state), and only reads the map.
 #pragma once
 
 #include <Eigen/Core>
@@ -34,12 +34,13 @@ struct WayRequest {
 
 class WayPlanner {
  public:
-  // `params` must outlive this object; its max_vel_mps is read at every call (the speed limit of
-  // the current request).
-  explicit WayPlanner(const SomParams& params);
+  // `params` and `astar` must outlive this object; params.max_vel_mps is read at every call (the
+  // speed limit of the current request). Two WayPlanners may share one A* when they never search
+  // at the same time.
+  WayPlanner(const SomParams& params, GridAStar& astar);
 
-  // Sizes the per-cell search arrays for this grid's window (cheap unless it changed).
-  void prepare(const VoxelGrid& grid);
+  // Sizes the clearance cost's per-cell memo for this grid's window (cheap unless it changed).
+  void prepareClearanceCost(const VoxelGrid& grid) { clearance_cost_.reserve(grid.numCells()); }
 
   // Searches the path (with the clearance cost or without) into out->path when found, adding the
   // search's effort to *out.
@@ -60,7 +61,7 @@ class WayPlanner {
                                                bool whole_cells, PlanOutput* out);
 
   const SomParams& params_;
-  GridAStar astar_;
+  GridAStar& astar_;
   ClearanceCost clearance_cost_;
   CorridorBuilder corridor_builder_;
   TrajectoryOptimizer optimizer_;
