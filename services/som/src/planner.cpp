@@ -3,6 +3,7 @@
 
 #include <future>
 #include <optional>
+#include <system_error>
 #include <utility>
 
 #include "mmh/common/collision_check.hpp"
@@ -121,9 +122,15 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
     thread_time.addTo(&way.out.timings.total);
     return way;
   };
-  const bool in_parallel = compare_clear && p.clearance.compare_in_parallel;
+  bool in_parallel = compare_clear && p.clearance.compare_in_parallel;
   std::future<ClearWay> clear_way;
-  if (in_parallel) clear_way = std::async(std::launch::async, planClearWay);
+  if (in_parallel) {
+    try {
+      clear_way = std::async(std::launch::async, planClearWay);
+    } catch (const std::system_error&) {
+      in_parallel = false;  // no thread to be had: the same answer, planned in turn
+    }
+  }
   bool path_given = false;
   auto giveShortestPath = [&](std::vector<Eigen::Vector3d> path) {
     shortest_path.set_value(std::move(path));
