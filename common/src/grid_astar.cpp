@@ -159,9 +159,7 @@ AStarResult GridAStar::search(const VoxelGrid& grid, const Eigen::Vector3d& star
             options.extra_step_cost ? static_cast<float>(options.extra_step_cost(nb, ni)) : 0.f;
         cell = {std::numeric_limits<float>::infinity(), -1, generation_, extra};
       }
-      float step = n.step;
-      if (options.extra_step_cost) step += cell.extra;
-      const float ng = gc + step;
+      const float ng = gc + (n.step + cell.extra);  // extra is 0 without an extra cost
       if (cell.g <= ng) continue;
       cell.g = ng;
       cell.parent = static_cast<int32_t>(cur);

@@ -132,10 +132,6 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
     }
   }
   bool path_given = false;
-  auto giveShortestPath = [&](std::vector<Eigen::Vector3d> path) {
-    shortest_path.set_value(std::move(path));
-    path_given = true;
-  };
   // However plan() ends (an exception included), the other thread is given the path it may wait
   // for and has ended before the state it reads goes.
   const ScopeExit end_clear_way([&] {
@@ -160,8 +156,9 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
     ++out.clearance_fallbacks;
     found = shortest_.searchPath(request, false, &out);
   }
-  giveShortestPath(found == AStarResult::Status::kFound ? out.path
-                                                        : std::vector<Eigen::Vector3d>());
+  shortest_path.set_value(found == AStarResult::Status::kFound ? out.path
+                                                               : std::vector<Eigen::Vector3d>());
+  path_given = true;
   if (found != AStarResult::Status::kFound && in_parallel) joinClearWay();
   switch (found) {
     case AStarResult::Status::kFound:
