@@ -44,6 +44,10 @@ int main(int argc, char** argv) {
   std::string trace_id;
   parser.addString("--trace", &trace_id,
                    "request id: print EAM's round-by-round trace of that request (one log)");
+  std::string samples_id;
+  parser.addString("--samples", &samples_id,
+                   "request id: print that request, the path the mode searched and its answer (or "
+                   "the trajectory it refused) every 0.05 s: position, speed, acceleration, jerk");
   parser.addPositional("LOG", &logs, "LCM logs of flights");
   int code = 0;
   if (!parser.parse(argc, argv, &code)) return code;
@@ -59,6 +63,15 @@ int main(int argc, char** argv) {
       return 2;
     }
     options.trace = &std::cout;
+  }
+  if (!samples_id.empty()) {
+    char* end = nullptr;
+    options.samples_request_id = std::strtoll(samples_id.c_str(), &end, 10);
+    if (end == samples_id.c_str() || *end != '\0') {
+      std::cerr << "mmh-replan: --samples takes a request id\n";
+      return 2;
+    }
+    options.samples = &std::cout;
   }
   try {
     options.config = mmh::loadConfigWithOverrides(node, sets);

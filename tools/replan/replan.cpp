@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <memory>
@@ -25,11 +26,28 @@
 namespace mmh {
 namespace {
 
+// --samples: time between two samples of a trajectory (s).
+constexpr double kSampleStepS = 0.05;
+
 struct Answer {
   bool ok = false;
   std::string detail;
   Trajectory trajectory;  // when ok
+  // For --samples: what the mode searched and, when it failed, what it refused.
+  Trajectory refused;
+  std::string refused_what;  // what `refused` is
+  std::vector<std::vector<Eigen::Vector3d>> paths;
+  std::vector<Eigen::Vector3d> junctions;  // SOM's corridor
 };
+
+Answer answerOf(bool ok, const char* status, const std::string& detail,
+                const Trajectory& trajectory) {
+  Answer a;
+  a.ok = ok;
+  a.detail = ok ? "" : std::string(status) + ": " + detail;
+  a.trajectory = trajectory;
+  return a;
+}
 
 // The mode's planner behind one signature: the map and the request message.
 using PlanFn = std::function<Answer(const VoxelGrid&, const plan_request_t&)>;
@@ -56,8 +74,13 @@ ModePlanner makePlanner(const std::string& mode, const ReplanOptions& options) {
                                              })
                                        : nullptr);
               const eam::PlanResult r = planner->plan(grid, eamRequestOf(msg));
-              return Answer{r.ok, r.ok ? "" : std::string(toString(r.reason)) + ": " + r.detail,
-                            r.trajectory};
+              Answer a = answerOf(r.ok, toString(r.reason), r.detail, r.trajectory);
+              if (!r.ok && r.spline.numControlPoints() > 0) {
+                a.refused = r.spline.toTrajectory();
+                a.refused_what = "EAM's last curve (not verified)";
+              }
+              a.paths = r.guide_paths;
+              return a;
             },
             [planner](const VoxelGrid& grid) { planner->prepare(grid); }};
   }
@@ -67,8 +90,12 @@ ModePlanner makePlanner(const std::string& mode, const ReplanOptions& options) {
             [planner](const VoxelGrid& grid, const plan_request_t& msg) {
               const som::PlanOutput r =
                   planner->plan(grid, startStateOf(msg), toVec3(msg.target), msg.max_speed_mps);
-              return Answer{r.ok(), r.ok() ? "" : std::string(toString(r.status)) + ": " + r.detail,
-                            r.trajectory};
+              Answer a = answerOf(r.ok(), toString(r.status), r.detail, r.trajectory);
+              a.refused = r.refused;
+              a.refused_what = "the trajectory SOM's verification refused";
+              if (!r.path.empty()) a.paths.push_back(r.path);
+              a.junctions = r.corridor.junctions;
+              return a;
             },
             [planner](const VoxelGrid& grid) { planner->prepare(grid); }};
   }
@@ -77,8 +104,7 @@ ModePlanner makePlanner(const std::string& mode, const ReplanOptions& options) {
     return {channels::kPlanRequestFpm, plan_request_t::MODE_FPM,
             [planner](const VoxelGrid&, const plan_request_t& msg) {
               const fpm::Result r = planner->plan(fpmRequestOf(msg));
-              return Answer{r.ok, r.ok ? "" : std::string(toString(r.status)) + ": " + r.detail,
-                            r.trajectory};
+              return answerOf(r.ok, toString(r.status), r.detail, r.trajectory);
             },
             nullptr};
   }
@@ -91,7 +117,63 @@ bool decodeEvent(const lcm::LogEvent& e, Msg* msg) {
   return decodeChecked(e.data, static_cast<uint32_t>(e.datalen), *msg, &why) == DecodeOutcome::kOk;
 }
 
+std::string pointText(const Eigen::Vector3d& p) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "(%.2f, %.2f, %.2f)", p.x(), p.y(), p.z());
+  return text;
+}
+
+// --samples: the request, what the mode searched, and its answer or what it refused.
+void printRequestSamples(const plan_request_t& msg, double t_s, const std::string& mode,
+                         const Answer& a, std::ostream& out) {
+  const KinematicState start = startStateOf(msg);
+  char line[320];
+  std::snprintf(line, sizeof(line),
+                "request %lld at %.2f s (%s): start %s m, velocity %s m/s, acceleration %s m/s^2; "
+                "target %s\n",
+                static_cast<long long>(msg.request_id), t_s, mode.c_str(),
+                pointText(start.position).c_str(), pointText(start.velocity).c_str(),
+                pointText(start.acceleration).c_str(), pointText(toVec3(msg.target)).c_str());
+  out << line << "now: " << (a.ok ? "answered" : "failed: " + a.detail) << "\n";
+  for (const auto& path : a.paths) {
+    out << (mode == "som" ? "A* path" : "A* guide") << " (" << path.size() << " points):";
+    for (const Eigen::Vector3d& p : path) out << " " << pointText(p);
+    out << "\n";
+  }
+  if (!a.junctions.empty()) {
+    out << "corridor junctions (" << a.junctions.size() << "):";
+    for (const Eigen::Vector3d& p : a.junctions) out << " " << pointText(p);
+    out << "\n";
+  }
+  const Trajectory& shown = a.ok ? a.trajectory : a.refused;
+  if (shown.empty()) return;
+  std::snprintf(line, sizeof(line),
+                "%s: %zu pieces, %.2f s, top speed %.2f m/s, top acceleration "
+                "%.2f m/s^2\n",
+                a.ok ? "answer" : a.refused_what.c_str(), shown.pieces().size(), shown.duration(),
+                shown.maxSpeed(), shown.maxAcceleration());
+  out << line;
+  printTrajectorySamples(shown, kSampleStepS, out);
+}
+
 }  // namespace
+
+void printTrajectorySamples(const Trajectory& t, double step_s, std::ostream& out) {
+  out << "      t        x        y        z    speed      acc     jerk\n";
+  if (t.empty() || !(step_s > 0.0)) return;
+  const double end = t.duration();
+  const int steps = static_cast<int>(std::floor(end / step_s + 1e-9));
+  for (int i = 0; i <= steps + 1; ++i) {
+    // Every step_s, then the end (once).
+    const double s = i <= steps ? i * step_s : end;
+    if (i == steps + 1 && end - steps * step_s < 1e-9) break;
+    const Eigen::Vector3d p = t.position(s);
+    char line[128];
+    std::snprintf(line, sizeof(line), "%7.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f\n", s, p.x(),
+                  p.y(), p.z(), t.velocity(s).norm(), t.acceleration(s).norm(), t.jerk(s).norm());
+    out << line;
+  }
+}
 
 std::vector<ReplanOutcome> replanLog(const std::string& log_path, const ReplanOptions& options) {
   ModePlanner planner = makePlanner(options.mode, options);
@@ -127,6 +209,8 @@ std::vector<ReplanOutcome> replanLog(const std::string& log_path, const ReplanOp
                 .count();
         o.ok = a.ok;
         o.detail = a.detail;
+        if (options.samples && msg.request_id == options.samples_request_id)
+          printRequestSamples(msg, o.t_s, options.mode, a, *options.samples);
         o.target_distance_m = (toVec3(msg.target) - toVec3(msg.start_position)).norm();
         if (a.ok) {
           o.duration_s = a.trajectory.duration();

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "mmh/common/config.hpp"
+#include "mmh/common/trajectory.hpp"
 
 namespace mmh {
 
@@ -47,11 +48,20 @@ struct ReplanOptions {
   // EAM only: the planner's round-by-round trace of the request with this id goes to `trace`.
   int64_t trace_request_id = -1;
   std::ostream* trace = nullptr;
+  // The request with this id, planned again, goes to `samples`: its start, the path the mode
+  // searched, and its answer (or the trajectory the mode refused) sampled in time
+  // (printTrajectorySamples).
+  int64_t samples_request_id = -1;
+  std::ostream* samples = nullptr;
 };
 
 // All requests of the mode in the log, in order. Throws ReplanInputError when the log cannot be
 // read or the mode is unknown.
 std::vector<ReplanOutcome> replanLog(const std::string& log_path, const ReplanOptions& options);
+
+// One line per step_s of `t` (and its end): time, position, speed, acceleration and jerk, under a
+// header line naming the columns.
+void printTrajectorySamples(const Trajectory& t, double step_s, std::ostream& out);
 
 struct ReplanSummary {
   int requests = 0;       // requests with a logged answer

@@ -52,6 +52,7 @@ PlanOutput Planner::plan(const VoxelGrid& grid, const KinematicState& start,
   auto finish = [&](PlanStatus status, const std::string& detail) -> PlanOutput& {
     out.status = status;
     out.detail = detail;
+    if (status == PlanStatus::kVerify) out.refused = std::move(out.trajectory);
     if (status != PlanStatus::kOk) out.trajectory = Trajectory();
     whole.addTo(&out.timings.total);
     out.timings.total.cpu_us += other_thread.cpu_us;

@@ -2,7 +2,8 @@
 # mmh-replan: the EAM, SOM and FPM requests of lock-step flights recorded by mmh-stack --log, planned
 # again by the same build and configuration, fail exactly where they failed in flight (nothing
 # fixed, nothing broken, one --list line per failure, one --answers line per answer); another configuration is accepted with
-# --set; --trace prints the rounds of one EAM request; usage errors exit with 2 and say why.
+# --set; --trace prints the rounds of one EAM request; --samples prints one request's path and
+# answer (or the trajectory the mode refused) in time; usage errors exit with 2 and say why.
 set -euo pipefail
 build=$1
 out=$(mktemp -d)
@@ -64,6 +65,39 @@ rounds=$(grep -cE '^  round [0-9]+: stretches [0-9]+, pairs added' "$out/trace.t
 "$replan" --trace 999999 "$log" > "$out/notrace.txt" || fail "--trace of no request exit $?"
 ! grep -q '^  round ' "$out/notrace.txt" || fail "--trace of an unknown id printed rounds"
 
+# --samples: the request, the path the mode searched and the trajectory it refused (or its
+# answer), one row per 0.05 s: t, x, y, z, speed, acceleration, jerk.
+som_refused=$("$replan" --mode som --list "$log" |
+  sed -nE 's/.* request ([0-9]+) .* now: verification: max .*/\1/p' | head -1)
+[ -n "$som_refused" ] || fail "the flight had no SOM answer refused by its verification"
+"$replan" --mode som --samples "$som_refused" "$log" > "$out/refused.txt" ||
+  fail "--samples exit $?"
+grep -qE "^request $som_refused at [0-9.]+ s \(som\): start \(" "$out/refused.txt" ||
+  fail "--samples $som_refused: no request line"
+grep -qE '^now: failed: verification: max ' "$out/refused.txt" || fail "--samples: no failure line"
+grep -qE '^A\* path \([0-9]+ points\):' "$out/refused.txt" || fail "--samples: no A* path"
+grep -qE "^the trajectory SOM's verification refused: [0-9]+ pieces" "$out/refused.txt" ||
+  fail "--samples: the refused trajectory is not shown"
+sample_row='^ +-?[0-9]+\.[0-9]{2}( +-?[0-9]+\.[0-9]{2}){6}$'
+rows=$(grep -cE "$sample_row" "$out/refused.txt" || true)
+[ "$rows" -ge 10 ] || fail "--samples printed $rows sample rows of the refused trajectory"
+# The samples show what the verification refused: a speed over 3 m/s or an acceleration over
+# 2 m/s^2 (the vehicle's limits) somewhere.
+grep -E "$sample_row" "$out/refused.txt" | awk '$5 > 3.0 || $6 > 2.0 {over = 1} END {exit !over}' ||
+  fail "--samples: no sample of the refused trajectory over the limits"
+# An answered request: its answer, ending at rest.
+som_ok=$("$replan" --mode som --answers "$log" | sed -nE 's/.* request ([0-9]+) .*/\1/p' | head -1)
+"$replan" --mode som --samples "$som_ok" "$log" > "$out/answer.txt" || fail "--samples exit $?"
+grep -qE '^now: answered' "$out/answer.txt" || fail "--samples $som_ok: not answered"
+grep -qE '^answer: [0-9]+ pieces' "$out/answer.txt" || fail "--samples $som_ok: no answer line"
+last_speed=$(grep -E "$sample_row" "$out/answer.txt" | tail -1 | awk '{print $5}')
+[ "$last_speed" = "0.00" ] || fail "--samples $som_ok: the answer ends at $last_speed m/s"
+# EAM: a failed request shows its last curve.
+eam_failed=$("$replan" --list "$log" | sed -nE 's/.* request ([0-9]+) .*/\1/p' | head -1)
+"$replan" --samples "$eam_failed" "$log" > "$out/eam_samples.txt" || fail "--samples exit $?"
+grep -qE "^EAM's last curve \(not verified\): [0-9]+ pieces" "$out/eam_samples.txt" ||
+  fail "--samples $eam_failed: EAM's last curve is not shown"
+
 # Another configuration of the mode: planned and summarised (whatever it changes).
 "$replan" --set eam.max_rebound_rounds=2 "$log" > "$out/rounds.txt" || fail "--set exit $?"
 grep -qE '^failed then [0-9]+, now [0-9]+' "$out/rounds.txt" || fail "--set gave no summary"
@@ -78,6 +112,7 @@ check_usage() {
 check_usage
 check_usage "$out/missing.lcm"
 check_usage --mode xyz "$log"
+check_usage --samples abc "$log"
 check_usage --set eam.no_such_key=1 "$log"
 check_usage --trace x1 "$log"
 check_usage --mode som --trace 1 "$log"

@@ -397,3 +397,27 @@ TEST(SomPlanner, KeepsToTheSpeedLimitOfTheRequest) {
   EXPECT_GT(full.trajectory.maxSpeed(), 2.0);
   EXPECT_GT(slow.trajectory.duration(), full.trajectory.duration() * 1.2);
 }
+
+// The trajectory SOM's verification refused stays in the output for diagnosis (mmh-replan
+// --samples), and only then: here the verification allows half the speed the optimiser plans
+// for, so it refuses the answer.
+TEST(SomPlanner, KeepsTheTrajectoryItsVerificationRefused) {
+  const auto w = som_test::pillars();
+  const auto start = atRest(w.start);
+  mmh::som::SomParams strict = testParams();
+  strict.verify.limit_tolerance = -0.5;
+  mmh::som::Planner refusing(strict);
+  const mmh::som::PlanOutput out = refusing.plan(*w.grid, start, w.target);
+  ASSERT_EQ(out.status, PlanStatus::kVerify) << out.detail;
+  EXPECT_NE(out.detail.find("max speed"), std::string::npos) << out.detail;
+  EXPECT_TRUE(out.trajectory.empty());
+  ASSERT_FALSE(out.refused.empty());
+  EXPECT_EQ(out.refused.position(0), start.position);
+  EXPECT_LT((out.refused.position(out.refused.duration()) - w.target).norm(), 1e-3);
+  EXPECT_GT(out.refused.maxSpeed(), 1.5);
+
+  mmh::som::Planner planner(testParams());
+  const mmh::som::PlanOutput answer = planner.plan(*w.grid, start, w.target);
+  expectVerified(w, start, answer);
+  EXPECT_TRUE(answer.refused.empty());
+}

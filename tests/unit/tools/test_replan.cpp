@@ -3,7 +3,10 @@
 // integration test on a recorded flight).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "replan.hpp"
 
@@ -103,3 +106,50 @@ TEST(Replan, AnEmptyLogSummarisesToZeros) {
 }
 
 }  // namespace
+
+namespace {
+
+// Along +x from the origin: 1 m/s and 2 m/s^2 for 0.12 s.
+mmh::Trajectory accelerating() {
+  mmh::Piece p;
+  p.duration = 0.12;
+  p.coeffs.col(1) = Eigen::Vector3d(1.0, 0.0, 0.0);
+  p.coeffs.col(2) = Eigen::Vector3d(1.0, 0.0, 0.0);
+  return mmh::Trajectory({p});
+}
+
+}  // namespace
+
+TEST(Replan, SamplesATrajectoryEveryStepAndAtItsEnd) {
+  std::ostringstream out;
+  mmh::printTrajectorySamples(accelerating(), 0.05, out);
+  std::istringstream lines(out.str());
+  std::string header;
+  std::getline(lines, header);
+  EXPECT_NE(header.find("speed"), std::string::npos);
+  std::vector<std::vector<double>> rows;
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream fields(line);
+    std::vector<double> row;
+    for (double v; fields >> v;) row.push_back(v);
+    rows.push_back(row);
+  }
+  ASSERT_EQ(rows.size(), 4u);  // 0, 0.05, 0.10 and the end, 0.12
+  const double times[] = {0.0, 0.05, 0.10, 0.12};
+  for (size_t i = 0; i < rows.size(); ++i) {
+    ASSERT_EQ(rows[i].size(), 7u);
+    const double t = times[i];
+    EXPECT_NEAR(rows[i][0], t, 1e-9);
+    EXPECT_NEAR(rows[i][1], t + t * t, 0.005);      // x
+    EXPECT_NEAR(rows[i][4], 1.0 + 2.0 * t, 0.005);  // speed
+    EXPECT_NEAR(rows[i][5], 2.0, 0.005);            // acceleration
+    EXPECT_NEAR(rows[i][6], 0.0, 0.005);            // jerk
+  }
+}
+
+TEST(Replan, SamplesOfAnEmptyTrajectoryAreOnlyTheHeader) {
+  std::ostringstream out;
+  mmh::printTrajectorySamples(mmh::Trajectory(), 0.05, out);
+  const std::string text = out.str();
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1);
+}

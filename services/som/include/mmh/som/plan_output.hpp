@@ -23,7 +23,9 @@ struct PlanTimings {
 struct PlanOutput {
   PlanStatus status = PlanStatus::kBadInput;
   std::string detail;
-  Trajectory trajectory;              // verified; set only with kOk
+  Trajectory trajectory;  // verified; set only with kOk
+  // With kVerify, the trajectory the verification refused (for diagnosis: mmh-replan --samples).
+  Trajectory refused;
   std::vector<Eigen::Vector3d> path;  // shortened A* path
   Corridor corridor;
   std::vector<int> piece_polytope;
