@@ -161,18 +161,17 @@ void printRequestSamples(const plan_request_t& msg, double t_s, const std::strin
 void printTrajectorySamples(const Trajectory& t, double step_s, std::ostream& out) {
   out << "      t        x        y        z    speed      acc     jerk\n";
   if (t.empty() || !(step_s > 0.0)) return;
-  const double end = t.duration();
-  const int steps = static_cast<int>(std::floor(end / step_s + 1e-9));
-  for (int i = 0; i <= steps + 1; ++i) {
-    // Every step_s, then the end (once).
-    const double s = i <= steps ? i * step_s : end;
-    if (i == steps + 1 && end - steps * step_s < 1e-9) break;
+  auto row = [&](double s) {
     const Eigen::Vector3d p = t.position(s);
     char line[128];
     std::snprintf(line, sizeof(line), "%7.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f\n", s, p.x(),
                   p.y(), p.z(), t.velocity(s).norm(), t.acceleration(s).norm(), t.jerk(s).norm());
     out << line;
-  }
+  };
+  const double end = t.duration();
+  const int steps = static_cast<int>(std::floor(end / step_s + 1e-9));
+  for (int i = 0; i <= steps; ++i) row(i * step_s);
+  if (end - steps * step_s > 1e-9) row(end);
 }
 
 std::vector<ReplanOutcome> replanLog(const std::string& log_path, const ReplanOptions& options) {
