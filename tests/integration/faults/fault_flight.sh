@@ -43,10 +43,14 @@ case "$scenario" in
   stale-odometry)
     checks=(--expect-status "ODOMETRY is stale" --expect-counter mmh-arbiter:odometry_stale) ;;
   slow-planners)
-    # Answers about 0.45 s late, past the full-speed deadline (0.2 s): the speed comes down and
-    # the committed trajectory is slowed along its path.
-    checks=(--expect-status "slowing down:" --expect-counter mmh-arbiter:slowdowns
-      --expect-counter mmh-arbiter:degraded_periods) ;;
+    # Answers about 0.45 s late, past the full-speed deadline (0.2 s): the latency budget is
+    # degraded and lowers the speed limit of every request. Whether a committed trajectory is then
+    # also re-timed slower ("slowing down:") depends on when the late answers fall: a stop comes
+    # first when the longer reaction puts a tree or unmapped space within reach while a round
+    # waits on the stopped planners, and plans made after the limit came down need no slowdown
+    # (it came in about half the runs). The re-timing itself is checked by the unit test
+    # ArbiterRules.AnswersLaterThanTheFullSpeedDeadlineSlowTheVehicleUntilTheLoadGoes.
+    checks=(--expect-status "speed lowered to" --expect-counter mmh-arbiter:degraded_periods) ;;
   *) echo "unknown scenario $scenario"; exit 2 ;;
 esac
 case "$scenario" in

@@ -2,9 +2,9 @@
 // tests promise: every committed TRAJECTORY takes over without a jump from the one it follows (as
 // on the vehicle: the latest sent that starts before it), no planning mode's trajectory is
 // committed while ODOMETRY is stale, the mission was reached without collision, and the expected
-// ARBITER_STATUS details and HEARTBEAT counters appeared. With --wait-distance D it instead waits
-// (re-reading the growing log) until MISSION_STATUS shows D metres flown, so that a test injects
-// its fault mid-flight whatever the machine's load; with
+// ARBITER_STATUS details (or degraded reasons) and HEARTBEAT counters appeared. With
+// --wait-distance D it instead waits (re-reading the growing log) until MISSION_STATUS shows D
+// metres flown, so that a test injects its fault mid-flight whatever the machine's load; with
 // --wait-status TEXT, until some ARBITER_STATUS detail contains TEXT (the fault was noticed).
 #include <lcm/lcm-cpp.hpp>
 
@@ -70,14 +70,20 @@ double distanceFlown(const std::string& path) {
   return d;
 }
 
-// Whether some ARBITER_STATUS detail in the log so far contains `text`.
+// Whether an ARBITER_STATUS says `text`: in the detail of its decision, or in the reason its
+// latency budget is degraded.
+bool statusSays(const mmh::arbiter_status_t& m, const std::string& text) {
+  return m.detail.find(text) != std::string::npos ||
+         m.degraded_reason.find(text) != std::string::npos;
+}
+
+// Whether some ARBITER_STATUS in the log so far says `text` (statusSays).
 bool statusSeen(const std::string& path, const std::string& text) {
   lcm::LogFile log(path, "r");
   if (!log.good()) return false;
   while (const lcm::LogEvent* e = log.readNextEvent()) {
     mmh::arbiter_status_t m;
-    if (endsWith(e->channel, "ARBITER_STATUS") && decode(*e, &m) &&
-        m.detail.find(text) != std::string::npos)
+    if (endsWith(e->channel, "ARBITER_STATUS") && decode(*e, &m) && statusSays(m, text))
       return true;
   }
   return false;
@@ -220,7 +226,7 @@ int main(int argc, char** argv) {
       mmh::arbiter_status_t m;
       if (!decode(*e, &m)) continue;
       for (size_t i = 0; i < o.statuses.size(); ++i) {
-        if (m.detail.find(o.statuses[i]) != std::string::npos) status_seen[i] = true;
+        if (statusSays(m, o.statuses[i])) status_seen[i] = true;
       }
     } else if (endsWith(ch, "MISSION_STATUS")) {
       mmh::mission_status_t m;
